@@ -1,0 +1,92 @@
+// ptnet/data.hpp: the HDF5 dataset file (see docs/formats.md).
+//
+//   ptnet::DatasetWriter w("data.h5", info, bodies, /*force=*/false);
+//   w.add(meta, sequence);            // one per clip x body
+//   w.commit();                       // temporary file renamed into place
+//
+//   ptnet::Dataset d = ptnet::Dataset::open("data.h5");   // validated
+//   for (const auto& s : d.sequences()) d.read(s.name, 0, 30, buffer);
+//
+// Layout:
+//   /                 attrs format="ptnet-dataset", version=1, fps, rows, cols,
+//                     pitch_m, units="kPa", generator, config (JSON text)
+//   /bodies           compound table: id, sex (0 female, 1 male), height_cm,
+//                     weight_kg, role
+//   /sequences/<name> float32 [T, rows, cols], chunked + compressed; attrs
+//                     body_id, motion_id, performer, category, take, source
+// HDF5 is not thread-safe here: use a writer or reader from one thread.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ptnet/body_spec.hpp"
+#include "ptnet/pressure.hpp"
+
+namespace ptnet {
+
+inline constexpr const char* kDatasetFormat = "ptnet-dataset";
+inline constexpr int kDatasetVersion = 1;
+
+struct DatasetInfo {
+  MatSpec mat;
+  double fps = 30;
+  std::string generator;    // "ptnet 0.1.0 simulate"
+  std::string config_json = "{}";  // options that produced the file
+};
+
+struct SequenceMeta {
+  std::string name;       // "<motion_id>__<body_id>" by convention
+  std::string body_id;
+  std::string motion_id;  // the same motion on two bodies shares this
+  std::string performer;  // who performed the motion (CMU subject, procedural P)
+  std::string category;   // walking | rom | freestyle | acting
+  int take = 1;           // 1 = seen, 2 = unseen in the paper's protocol
+  std::string source;     // BVH path or "procedural:..."
+  int frames = 0;         // filled by Dataset::open
+};
+
+class DatasetWriter {
+ public:
+  DatasetWriter(const std::string& path, const DatasetInfo& info,
+                const std::vector<BodySpec>& bodies, bool force);
+  ~DatasetWriter();  // without commit(), the temporary file is removed
+  DatasetWriter(const DatasetWriter&) = delete;
+  DatasetWriter& operator=(const DatasetWriter&) = delete;
+
+  // Checks the shape against the mat and the body_id against the bodies.
+  void add(const SequenceMeta& meta, const PressureSequence& sequence);
+  void commit();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+class Dataset {
+ public:
+  // Validates format, version, attributes, shapes; throws Error naming the file.
+  static Dataset open(const std::string& path);
+  Dataset(Dataset&&) noexcept;
+  Dataset& operator=(Dataset&&) noexcept;
+  ~Dataset();
+
+  const std::string& path() const;
+  const DatasetInfo& info() const;
+  const std::vector<BodySpec>& bodies() const;
+  const BodySpec& body(const std::string& id) const;  // throws if absent
+  const std::vector<SequenceMeta>& sequences() const;
+  const SequenceMeta& sequence(const std::string& name) const;  // throws if absent
+
+  // Frames [start, start + count) of a sequence into out[count, rows, cols].
+  void read(const std::string& name, int start, int count, float* out) const;
+  PressureSequence read(const std::string& name) const;
+
+ private:
+  Dataset();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ptnet

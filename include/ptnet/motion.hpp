@@ -1,0 +1,178 @@
+// ptnet/motion.hpp: motion capture in and out (BVH), forward kinematics,
+// canonical joints, resampling, retargeting and procedural motions.
+//
+//   ptnet::MotionOptions opt;                 // units auto, BVH y-up, 30 Hz
+//   ptnet::Motion m = ptnet::load_motion("walk.bvh", opt);
+//   ptnet::Motion r = ptnet::retarget(m, 182.0);   // onto a 182 cm body
+//   ptnet::write_bvh(ptnet::motion_to_bvh(r), "walk_182.bvh", /*force=*/false);
+//
+// World frame (every Motion): metres, right-handed, z up, ground z = 0. For
+// the canonical skeleton +x is the rest-pose facing direction and +y the
+// body's left. A y-up BVH maps to it by (x, y, z)_bvh -> (z, x, y)_world.
+//
+// Dimension legend: F frames, J joints of a BVH rig, K = kJointCount
+// canonical joints.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ptnet {
+
+// ---------------------------------------------------------------- BVH files
+
+enum class Channel : std::uint8_t { Xposition, Yposition, Zposition, Xrotation, Yrotation, Zrotation };
+
+struct BvhJoint {
+  std::string name;
+  int parent = -1;                          // index into Bvh::joints, -1 for ROOT
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // file units, file axes
+  std::vector<Channel> channels;            // 0, 3 or 6, in file order
+  int first_channel = 0;                    // column of channels[0] in a frame
+  bool has_end_site = false;
+  Eigen::Vector3d end_site = Eigen::Vector3d::Zero();
+};
+
+struct Bvh {
+  std::vector<BvhJoint> joints;  // parents before children (file order)
+  int channel_count = 0;
+  double frame_time = 1.0 / 30;  // s
+  std::vector<double> values;    // [F, channel_count], file units, degrees
+  std::string source;            // file name, for error messages
+
+  int frames() const { return channel_count ? int(values.size() / channel_count) : 0; }
+  double fps() const { return 1.0 / frame_time; }
+  const double* frame(int f) const { return values.data() + std::size_t(f) * channel_count; }
+  int find(std::string_view joint_name) const;  // -1 if absent
+};
+
+// Parses BVH text. `source` names the file in errors, which are one line:
+// "walk.bvh:42: expected CHANNELS, found OFFSET".
+Bvh parse_bvh(std::string_view text, const std::string& source);
+Bvh read_bvh(const std::string& path);
+std::string format_bvh(const Bvh& bvh);
+// Atomic write (temporary file + rename); refuses to overwrite unless force.
+void write_bvh(const Bvh& bvh, const std::string& path, bool force);
+
+// ------------------------------------------------------- units and up axis
+
+enum class Units { automatic, m, cm, mm, in };
+enum class UpAxis { y, z };
+Units parse_units(const std::string& text);  // "auto|m|cm|mm|in"
+UpAxis parse_up_axis(const std::string& text);  // "y|z"
+const char* units_name(Units units);
+
+// Metres per file unit. For Units::automatic, chosen from the rest-pose
+// standing height so that it falls in a human range.
+double metres_per_unit(const Bvh& bvh, Units units, UpAxis up);
+
+// World positions of every BVH joint (not end sites) for every frame:
+// [F][J], metres, z up. `scale` is metres per file unit.
+std::vector<Eigen::Vector3d> forward_kinematics(const Bvh& bvh, double scale, UpAxis up);
+// The same for one frame (J positions appended to `out`).
+void forward_kinematics_frame(const Bvh& bvh, int frame, double scale, UpAxis up,
+                              std::vector<Eigen::Vector3d>& out);
+
+// -------------------------------------------------------- canonical joints
+
+enum Joint : int {
+  kPelvis, kSpine, kChest, kNeck, kHead,
+  kLeftHip, kLeftKnee, kLeftAnkle, kLeftToe,
+  kRightHip, kRightKnee, kRightAnkle, kRightToe,
+  kLeftShoulder, kLeftElbow, kLeftWrist,
+  kRightShoulder, kRightElbow, kRightWrist,
+  kJointCount
+};
+const char* joint_name(int joint);             // "pelvis", "left_hip", ...
+int joint_parent(int joint);                   // -1 for the pelvis
+
+// Index of the BVH joint for each canonical joint. Recognises CMU, Character
+// Creator (CC_Base_*), Mixamo (mixamorig:*), SMPL (L_Hip ...), Vicon /
+// TotalCapture naming. Throws Error listing the names found if it cannot.
+std::array<int, kJointCount> map_canonical(const Bvh& bvh);
+
+// ------------------------------------------------------------------ motion
+
+using Pose = std::array<Eigen::Vector3d, kJointCount>;  // world positions, m
+
+struct Motion {
+  std::string name;
+  double fps = 30;
+  std::vector<Pose> frames;  // [F]
+  int size() const { return int(frames.size()); }
+};
+
+struct MotionOptions {
+  Units units = Units::automatic;
+  double metres_per_unit = 0;  // > 0 overrides `units` (e.g. from clips.csv)
+  UpAxis up = UpAxis::y;
+  bool keep_tpose = false;     // a leading T-pose frame is dropped by default
+  double fps = 30;             // resample to this rate; <= 0 keeps the file's
+};
+
+// True if frame `f` is a T-pose: arms out horizontally, legs straight.
+bool is_tpose(const Bvh& bvh, int frame, const std::array<int, kJointCount>& map, double scale,
+              UpAxis up);
+
+// Resamples every channel to `fps`: positions linearly, each joint's rotation
+// by quaternion slerp (Euler angles rewritten in the joint's channel order).
+Bvh resample(const Bvh& bvh, double fps);
+
+// Reads, maps, drops a leading T-pose, resamples, and runs FK.
+Motion motion_from_bvh(const Bvh& bvh, const MotionOptions& options);
+Motion load_motion(const std::string& path, const MotionOptions& options);
+
+// Standing height (m) of the first frames: top of head (head joint plus head
+// length) above the lowest foot point.
+double standing_height(const Motion& motion);
+
+// -------------------------------------------------------- canonical skeleton
+
+// Canonical bone offsets (parent -> joint) in the rest pose, world axes,
+// from anthropometric proportions of `height_cm` (arms hanging down).
+Pose canonical_rest_offsets(double height_cm);
+
+// Retargets onto a body of `height_cm`: every bone keeps its world direction
+// per frame (the joint rotations) and takes the target's length; the root
+// translation scales with leg length; the motion is re-grounded so that the
+// lowest foot point during stance is at z = 0.
+Motion retarget(const Motion& motion, double height_cm);
+
+// The motion as a BVH on the canonical skeleton (joints named as
+// joint_name(), y-up, centimetres, ZXY rotation channels). Reading it back
+// gives the same world positions within 1e-4 m.
+Bvh motion_to_bvh(const Motion& motion);
+
+// Lowest point of the foot soles (heel, toe tip) for one pose, z (m).
+double lowest_foot_z(const Pose& pose);
+
+// ------------------------------------------------------ procedural motions
+
+enum class Category { walking, rom, freestyle, acting };
+inline constexpr std::array<Category, 4> kCategories{Category::walking, Category::rom,
+                                                     Category::freestyle, Category::acting};
+Category parse_category(const std::string& text);  // throws Error
+const char* category_name(Category category);
+
+struct GenerateOptions {
+  Category category = Category::walking;
+  int performer = 1;      // 1.. : per-performer style (seeded by this)
+  int take = 1;           // 1.. : per-take variation
+  double seconds = 10;
+  double fps = 30;
+  double height_cm = 0;   // 0: the performer's own height
+  std::uint64_t seed = 0; // mixed with performer and take
+};
+
+// A seeded procedural clip on the canonical skeleton, grounded, with planted
+// stance feet. Same options, same motion.
+Motion generate_motion(const GenerateOptions& options);
+
+// Height (cm) and sex of a procedural performer (deterministic in `performer`).
+double performer_height_cm(int performer, std::uint64_t seed = 0);
+
+}  // namespace ptnet

@@ -1,0 +1,45 @@
+// ptnet/pressure.hpp: the pressure-mat geometry and a pressure sequence, the
+// type every stage after the simulator exchanges.
+//
+//   ptnet::PressureSequence seq(ptnet::MatSpec{}, /*frames=*/90, /*fps=*/30);
+//   seq.at(t, row, col) = 42.0f;   // kPa
+//
+// Mat axes: row 0 at the mat's far end (+x end of the long axis), rows grow
+// towards the near end; col 0 on the walker's left (+y), cols grow to the
+// right. Cell (r, c) covers x in [L/2 - (r+1) p, L/2 - r p] and
+// y in [W/2 - (c+1) p, W/2 - c p] around the mat centre (L = rows p,
+// W = cols p). See docs/formats.md.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace ptnet {
+
+struct MatSpec {
+  int rows = 80;          // cells along the long (walking) axis
+  int cols = 28;          // cells across
+  double pitch_m = 0.02;  // cell size (m)
+  int cells() const { return rows * cols; }
+  double cell_area_m2() const { return pitch_m * pitch_m; }
+  bool operator==(const MatSpec& o) const {
+    return rows == o.rows && cols == o.cols && pitch_m == o.pitch_m;
+  }
+};
+
+struct PressureSequence {
+  MatSpec mat;
+  double fps = 30;
+  std::vector<float> kpa;  // [T, rows, cols], kPa, row-major
+
+  PressureSequence() = default;
+  PressureSequence(const MatSpec& m, int frames, double rate)
+      : mat(m), fps(rate), kpa(std::size_t(frames) * m.cells(), 0.0f) {}
+  int frames() const { return mat.cells() ? int(kpa.size() / mat.cells()) : 0; }
+  float* frame(int t) { return kpa.data() + std::size_t(t) * mat.cells(); }
+  const float* frame(int t) const { return kpa.data() + std::size_t(t) * mat.cells(); }
+  float& at(int t, int r, int c) { return frame(t)[r * mat.cols + c]; }
+  float at(int t, int r, int c) const { return frame(t)[r * mat.cols + c]; }
+};
+
+}  // namespace ptnet

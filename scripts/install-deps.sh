@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages ptnet needs, only those that are missing.
+# Does nothing (and needs no network) when everything is present.
+set -euo pipefail
+packages=(cmake g++ make ccache pkg-config
+          libtorch-dev libhdf5-dev hdf5-tools libeigen3-dev libcli11-dev
+          nlohmann-json3-dev libpng-dev libgif-dev libgtest-dev libgmock-dev
+          libbenchmark-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}" >&2
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+if ! $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"; then
+  $sudo apt-get update -q
+  $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
