@@ -79,7 +79,7 @@ class Lexer {
   double number(const char* what) {
     Token t = next();
     double v = 0;
-    if (!parse_double(t.text, v)) fail(t.line, what, t.text);
+    if (!parse_double(t.text, v)) fail(t.line, std::string("a ") + what, t.text);
     if (!std::isfinite(v)) fail(t.line, std::string("a finite ") + what, t.text);
     return v;
   }
@@ -230,6 +230,11 @@ const char* frame_value(const char* p, const char* end, double& v, bool& ok) {
   return r.ptr;
 }
 
+std::string frame_lines(long frames) {
+  return std::to_string(frames) + (frames == 1 ? " frame line" : " frame lines") + " (Frames: " +
+         std::to_string(frames) + ")";
+}
+
 }  // namespace
 
 int Bvh::find(std::string_view joint_name) const {
@@ -295,9 +300,7 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
     }
     if (read == frames)
       throw Error::at(source, line,
-                      std::to_string(frames) + " frame lines (Frames: " + std::to_string(frames) +
-                          ")",
-                      "more");
+                      frame_lines(frames), "more");
     if ((std::size_t(read) + 1) * cc > bvh.values.size()) bvh.values.resize(bvh.values.size() * 2 + cc);
     double* out = bvh.values.data() + std::size_t(read) * cc;
     std::size_t count = 0;
@@ -324,9 +327,7 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
     ++line;
   }
   if (read != frames)
-    throw Error::at(source, line,
-                    std::to_string(frames) + " frame lines (Frames: " + std::to_string(frames) + ")",
-                    std::to_string(read));
+    throw Error::at(source, line, frame_lines(frames), std::to_string(read));
   bvh.values.resize(std::size_t(frames) * cc);
   return bvh;
 }

@@ -24,7 +24,7 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
     bvh = &trimmed;
   }
   Bvh resampled;
-  if (options.fps > 0 && std::abs(options.fps - bvh->fps()) > 1e-6 * options.fps) {
+  if (options.fps > 0 && std::abs(options.fps - bvh->fps()) > 1e-4 * options.fps) {
     resampled = resample(*bvh, options.fps);
     bvh = &resampled;
   }
