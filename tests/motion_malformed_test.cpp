@@ -93,6 +93,6 @@ TEST(MotionMalformed, ParseErrorsFromMemoryNameTheSource) {
     ptnet::parse_bvh(huge, "huge.bvh");
     FAIL();
   } catch (const ptnet::Error& e) {
-    EXPECT_STREQ(e.what(), "huge.bvh:12: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
+    EXPECT_STREQ(e.what(), "huge.bvh:11: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
   }
 }
