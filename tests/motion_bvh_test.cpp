@@ -360,7 +360,16 @@ TEST(Canonical, MapsEveryNamingScheme) {
   Bvh lower = cmu;
   for (BvhJoint& j : lower.joints)
     for (char& ch : j.name) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  const Case cases[] = {{"mixamo", renamed({}, "mixamorig:")}, {"humanik", renamed({}, "Character1_")},
+  const Renames canonical = {{"Hips", "pelvis"}, {"Spine", "spine"}, {"Spine1", "chest"}, {"Neck", "neck"},
+                             {"Head", "head"}, {"LeftUpLeg", "L_hip"}, {"LeftLeg", "L_knee"}, {"LeftFoot", "L_ankle"},
+                             {"LeftToeBase", "L_toe"}, {"LeftShoulder", "L_clavicle"}, {"LeftArm", "L_shoulder"},
+                             {"LeftForeArm", "L_elbow"}, {"LeftHand", "L_wrist"}};
+  Bvh ours = renamed(canonical, "");
+  for (BvhJoint& j : ours.joints) {
+    if (j.name.rfind("L_", 0) == 0) j.name = "left_" + j.name.substr(2);
+    if (j.name.rfind("R_", 0) == 0) j.name = "right_" + j.name.substr(2);
+  }
+  const Case cases[] = {{"ptnet canonical", ours},{"mixamo", renamed({}, "mixamorig:")}, {"humanik", renamed({}, "Character1_")},
                         {"lowercase", lower}, {"smpl", renamed(smpl, "")}, {"character creator", renamed(cc, "")}};
   for (const Case& c : cases) {
     std::array<int, kJointCount> got{};

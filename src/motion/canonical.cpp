@@ -83,7 +83,8 @@ const std::vector<SideNames>& limb_names() {
       {kLeftAnkle, {"lankle", "leftankle", "leftfoot", "lfoot"}},
       {kLeftToe, {"lefttoebase", "ltoebase", "lefttoe", "ltoe", "lefttoes", "ltoes", "lball",
                   "leftball", "lfoot", "leftfoot"}},
-      {kLeftShoulder, {"leftarm", "lupperarm", "leftupperarm", "larm", "lhumerus", "lshoulder"}},
+      {kLeftShoulder, {"leftarm", "lupperarm", "leftupperarm", "larm", "lhumerus", "lshoulder",
+                       "leftshoulder"}},
       {kLeftElbow, {"leftforearm", "lforearm", "lelbow", "leftelbow", "llowerarm",
                     "leftlowerarm", "lradius"}},
       {kLeftWrist, {"lwrist", "leftwrist", "lefthand", "lhand"}},
@@ -141,6 +142,17 @@ std::array<int, kJointCount> map_canonical(const Bvh& bvh) {
   map.fill(-1);
   std::vector<std::string> norm;
   for (const BvhJoint& j : bvh.joints) norm.push_back(normalise(j.name));
+
+  // Our own canonical names (motion_to_bvh writes them): taken as they are.
+  bool all = true;
+  for (int k = 0; k < kJointCount && all; ++k) {
+    const std::string want = normalise(kNames[std::size_t(k)]);
+    for (std::size_t j = 0; j < norm.size() && map[std::size_t(k)] < 0; ++j)
+      if (norm[j] == want) map[std::size_t(k)] = int(j);
+    all = map[std::size_t(k)] >= 0;
+  }
+  if (all) return map;
+  map.fill(-1);
 
   map[kPelvis] = pick(bvh, norm, {"hips", "hip", "pelvis", "root"}, -1);
   if (map[kPelvis] >= 0) {
