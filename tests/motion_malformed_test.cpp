@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
 #include <set>
 #include <string>
 
@@ -86,6 +89,10 @@ TEST(MotionMalformed, ParseErrorsFromMemoryNameTheSource) {
   std::string deep = "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n";
   for (int i = 1; i < 5000; ++i) deep += "JOINT J" + std::to_string(i) + "\n{\nOFFSET 0 0 0\n";
   EXPECT_THROW(ptnet::parse_bvh(deep, "deep.bvh"), ptnet::Error);
+  // An absurd Frame Time does not make resampling allocate gigabytes.
+  std::string slow = "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
+                     "MOTION\nFrames: 2\nFrame Time: 1e9\n1 2 3\n4 5 6\n";
+  EXPECT_THROW(ptnet::resample(ptnet::parse_bvh(slow, "slow.bvh"), 30), ptnet::Error);
   // A huge Frames: claim does not allocate for it.
   std::string huge = "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
                      "MOTION\nFrames: 4000000000000\nFrame Time: 0.1\n1 2 3\n";
@@ -95,4 +102,49 @@ TEST(MotionMalformed, ParseErrorsFromMemoryNameTheSource) {
   } catch (const ptnet::Error& e) {
     EXPECT_STREQ(e.what(), "huge.bvh:11: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
   }
+}
+
+TEST(MotionMalformed, TruncationsAndMutationsNeverCrash) {
+  std::ifstream in(std::string(PTNET_TEST_DATA) + "/bvh/tpose_cmu_small.bvh", std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string good = ss.str();
+  ASSERT_GT(good.size(), 1000u);
+  int accepted = 0, rejected = 0;
+  auto attempt = [&](const std::string& text) {
+    try {
+      ptnet::Bvh b = ptnet::parse_bvh(text, "fuzz.bvh");
+      ASSERT_EQ(b.values.size(), std::size_t(b.frames()) * std::size_t(b.channel_count));
+      ++accepted;
+      try {  // and the rest of the path: units, mapping, T-pose, resampling, FK
+        const ptnet::Motion m = ptnet::motion_from_bvh(b, ptnet::MotionOptions{});
+        ASSERT_GE(m.size(), 1);
+      } catch (const ptnet::Error& e) {
+        ASSERT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+      }
+    } catch (const ptnet::Error& e) {
+      const std::string m = e.what();
+      ASSERT_EQ(m.rfind("fuzz.bvh:", 0), 0u) << m;
+      ASSERT_EQ(m.find('\n'), std::string::npos) << m;
+      ++rejected;
+    }
+  };
+  for (std::size_t n = 0; n < good.size(); n += 7) attempt(good.substr(0, n));
+  std::mt19937_64 rng(11);
+  const char alphabet[] = "0123456789.-+eE{} \t\r\nXYZrotainpsJOINTEndSite:";
+  for (int i = 0; i < 3000; ++i) {
+    std::string t = good;
+    const int edits = 1 + int(rng() % 3);
+    for (int k = 0; k < edits; ++k) {
+      const std::size_t at = rng() % t.size();
+      switch (rng() % 3) {
+        case 0: t[at] = alphabet[rng() % (sizeof alphabet - 1)]; break;
+        case 1: t.erase(at, 1 + rng() % 8); break;
+        default: t.insert(at, 1, alphabet[rng() % (sizeof alphabet - 1)]); break;
+      }
+    }
+    attempt(t);
+  }
+  EXPECT_GT(rejected, 1000);
+  EXPECT_GT(accepted, 10);  // harmless edits (a digit changed) still parse
 }
