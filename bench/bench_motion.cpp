@@ -58,7 +58,8 @@ void BM_ParseBvh(benchmark::State& state) {
     }
   }
   state.SetBytesProcessed(int64_t(bytes));
-  state.counters["bytes_per_second"] = benchmark::Counter(double(bytes), benchmark::Counter::kIsRate);
+  state.counters["bytes_per_second"] =
+      benchmark::Counter(double(bytes), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ParseBvh)->Unit(benchmark::kMillisecond);
 
@@ -73,7 +74,8 @@ void BM_Fk(benchmark::State& state) {
       joint_frames += double(b.frames()) * double(b.joints.size());
     }
   }
-  state.counters["joint_frames_per_second"] = benchmark::Counter(joint_frames, benchmark::Counter::kIsRate);
+  state.counters["joint_frames_per_second"] =
+      benchmark::Counter(joint_frames, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_Fk)->Unit(benchmark::kMillisecond);
 

@@ -34,7 +34,8 @@ RunResult run(const std::string& args) {
   const fs::path dir = fs::temp_directory_path();
   const std::string tag = "ptnet_info_smoke_" + std::to_string(::getpid());
   const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  const std::string cmd = std::string("'") + PTNET_BINARY + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const std::string cmd = std::string("'") + PTNET_BINARY + "' " + args + " >'" + out.string() +
+                          "' 2>'" + err.string() + "'";
   const int raw = std::system(cmd.c_str());
   RunResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
@@ -54,13 +55,14 @@ TEST(CliInfo, EveryMalformedFixtureIsOneLineAndExitOne) {
   std::sort(paths.begin(), paths.end());
   ASSERT_GE(paths.size(), 12u);
   // The binary takes ~1 s to start (LibTorch): run all fixtures at once.
-  const fs::path tmp = fs::temp_directory_path() / ("ptnet_info_malformed_" + std::to_string(::getpid()));
+  const fs::path tmp =
+      fs::temp_directory_path() / ("ptnet_info_malformed_" + std::to_string(::getpid()));
   fs::create_directories(tmp);
   std::string script;
   for (std::size_t i = 0; i < paths.size(); ++i) {
     const std::string base = (tmp / std::to_string(i)).string();
-    script += "('" + std::string(PTNET_BINARY) + "' info '" + paths[i] + "' >'" + base + ".out' 2>'" + base +
-              ".err'; echo $? >'" + base + ".rc') &\n";
+    script += "('" + std::string(PTNET_BINARY) + "' info '" + paths[i] + "' >'" + base +
+              ".out' 2>'" + base + ".err'; echo $? >'" + base + ".rc') &\n";
   }
   script += "wait\n";
   std::ofstream(tmp / "run.sh") << script;

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <sstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "ptnet/error.hpp"
@@ -30,7 +30,8 @@ const Case kCases[] = {
     {"missing_closing_brace.bvh", "15: expected JOINT, End Site or }, found MOTION"},
     {"unknown_channel.bvh", "9: expected a channel name (X|Y|Z + position|rotation), found Xrot"},
     {"bad_channel_count.bvh", "9: expected a channel count of 0, 3 or 6, found 4"},
-    {"too_few_channel_names.bvh", "10: expected a channel name (X|Y|Z + position|rotation), found End"},
+    {"too_few_channel_names.bvh",
+     "10: expected a channel name (X|Y|Z + position|rotation), found End"},
     {"short_frame_line.bvh", "20: expected 9 values, found 8"},
     {"crlf_short_frame_line.bvh", "20: expected 9 values, found 8"},
     {"long_frame_line.bvh", "19: expected 9 values, found 10"},
@@ -72,7 +73,8 @@ TEST(MotionMalformed, EveryFixtureIsListed) {
   std::size_t files = 0;
   for (const auto& e : std::filesystem::directory_iterator(kDir)) {
     ++files;
-    EXPECT_TRUE(listed.count(e.path().filename().string())) << e.path() << " has no expected message";
+    EXPECT_TRUE(listed.count(e.path().filename().string()))
+        << e.path() << " has no expected message";
   }
   EXPECT_EQ(files, listed.size());
   EXPECT_GE(files, 12u);
@@ -86,21 +88,26 @@ TEST(MotionMalformed, ParseErrorsFromMemoryNameTheSource) {
     EXPECT_STREQ(e.what(), "memory.bvh:1: expected HIERARCHY, found end of file");
   }
   // Deep nesting is an error, not a stack overflow.
-  std::string deep = "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n";
+  std::string deep =
+      "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n";
   for (int i = 1; i < 5000; ++i) deep += "JOINT J" + std::to_string(i) + "\n{\nOFFSET 0 0 0\n";
   EXPECT_THROW(ptnet::parse_bvh(deep, "deep.bvh"), ptnet::Error);
   // An absurd Frame Time does not make resampling allocate gigabytes.
-  std::string slow = "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
-                     "MOTION\nFrames: 2\nFrame Time: 1e9\n1 2 3\n4 5 6\n";
+  std::string slow =
+      "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
+      "MOTION\nFrames: 2\nFrame Time: 1e9\n1 2 3\n4 5 6\n";
   EXPECT_THROW(ptnet::resample(ptnet::parse_bvh(slow, "slow.bvh"), 30), ptnet::Error);
   // A huge Frames: claim does not allocate for it.
-  std::string huge = "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
-                     "MOTION\nFrames: 4000000000000\nFrame Time: 0.1\n1 2 3\n";
+  std::string huge =
+      "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
+      "MOTION\nFrames: 4000000000000\nFrame Time: 0.1\n1 2 3\n";
   try {
     ptnet::parse_bvh(huge, "huge.bvh");
     FAIL();
   } catch (const ptnet::Error& e) {
-    EXPECT_STREQ(e.what(), "huge.bvh:11: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
+    EXPECT_STREQ(
+        e.what(),
+        "huge.bvh:11: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
   }
 }
 
@@ -138,9 +145,15 @@ TEST(MotionMalformed, TruncationsAndMutationsNeverCrash) {
     for (int k = 0; k < edits; ++k) {
       const std::size_t at = rng() % t.size();
       switch (rng() % 3) {
-        case 0: t[at] = alphabet[rng() % (sizeof alphabet - 1)]; break;
-        case 1: t.erase(at, 1 + rng() % 8); break;
-        default: t.insert(at, 1, alphabet[rng() % (sizeof alphabet - 1)]); break;
+        case 0:
+          t[at] = alphabet[rng() % (sizeof alphabet - 1)];
+          break;
+        case 1:
+          t.erase(at, 1 + rng() % 8);
+          break;
+        default:
+          t.insert(at, 1, alphabet[rng() % (sizeof alphabet - 1)]);
+          break;
       }
     }
     attempt(t);

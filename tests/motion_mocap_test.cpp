@@ -51,11 +51,14 @@ TEST(MotionMocap, EveryClipReadsMapsStandsAndResamples) {
     const ptnet::Bvh bvh = ptnet::read_bvh(kMocap + "/" + c.file);
     EXPECT_EQ(bvh.frames(), c.frames);
     EXPECT_NEAR(bvh.fps(), c.fps, 0.01);
-    EXPECT_NEAR(ptnet::metres_per_unit(bvh, ptnet::Units::automatic, ptnet::UpAxis::y), c.metres_per_unit, 1e-4);
+    EXPECT_NEAR(ptnet::metres_per_unit(bvh, ptnet::Units::automatic, ptnet::UpAxis::y),
+                c.metres_per_unit, 1e-4);
     const auto map = ptnet::map_canonical(bvh);
     const bool cmu = c.rig == "cmu_31";
-    EXPECT_EQ(bvh.joints[std::size_t(map[ptnet::kLeftShoulder])].name, cmu ? "LeftArm" : "CC_Base_L_Upperarm");
-    EXPECT_EQ(bvh.joints[std::size_t(map[ptnet::kRightAnkle])].name, cmu ? "RightFoot" : "CC_Base_R_Foot");
+    EXPECT_EQ(bvh.joints[std::size_t(map[ptnet::kLeftShoulder])].name,
+              cmu ? "LeftArm" : "CC_Base_L_Upperarm");
+    EXPECT_EQ(bvh.joints[std::size_t(map[ptnet::kRightAnkle])].name,
+              cmu ? "RightFoot" : "CC_Base_R_Foot");
     const double scale = c.metres_per_unit;
     EXPECT_EQ(ptnet::is_tpose(bvh, 0, map, scale, ptnet::UpAxis::y), cmu);
     EXPECT_FALSE(ptnet::is_tpose(bvh, 1, map, scale, ptnet::UpAxis::y));
@@ -79,7 +82,8 @@ TEST(MotionMocap, EveryClipReadsMapsStandsAndResamples) {
     std::vector<double> sorted = low;
     std::sort(sorted.begin(), sorted.end());
     EXPECT_LT(std::abs(sorted[sorted.size() / 2]), 0.03);
-    const auto near = std::count_if(low.begin(), low.end(), [](double z) { return z > -0.05 && z < 0.08; });
+    const auto near =
+        std::count_if(low.begin(), low.end(), [](double z) { return z > -0.05 && z < 0.08; });
     EXPECT_GE(double(near) / double(low.size()), 0.8);
     // Body upright: head above the pelvis above the ankles in the first frame.
     const ptnet::Pose& p0 = m.frames[0];
