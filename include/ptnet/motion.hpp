@@ -174,5 +174,8 @@ Motion generate_motion(const GenerateOptions& options);
 
 // Height (cm) and sex of a procedural performer (deterministic in `performer`).
 double performer_height_cm(int performer, std::uint64_t seed = 0);
+// Sex of a procedural performer, 0 female, 1 male (alternating with
+// `performer`); performer_height_cm draws from that sex's stature.
+int performer_sex(int performer, std::uint64_t seed = 0);
 
 }  // namespace ptnet
