@@ -17,14 +17,14 @@ struct SolePoints {
 };
 
 // Heel back and toe tip of foot `side` (0 left, 1 right): rigid in the frame
-// of ankle -> toe and the knee (canonical foot, team notes).
+// of ankle -> toe with the foot's lateral axis horizontal (no foot roll, as
+// the generator makes them).
 inline SolePoints sole_points(const Pose& p, int side) {
-  const int knee = side ? kRightKnee : kLeftKnee, ankle = side ? kRightAnkle : kLeftAnkle,
-            toe = side ? kRightToe : kLeftToe;
+  const int ankle = side ? kRightAnkle : kLeftAnkle, toe = side ? kRightToe : kLeftToe;
   const Eigen::Vector3d fwd = p[toe] - p[ankle];
   const double h = fwd.norm() / std::hypot(0.07904, 0.030);
   const Eigen::Vector3d u = fwd.normalized();
-  const Eigen::Vector3d lat = (p[knee] - p[ankle]).cross(u).normalized();
+  const Eigen::Vector3d lat = Eigen::Vector3d::UnitZ().cross(u).normalized();
   const Eigen::Vector3d w = u.cross(lat);
   const Eigen::Vector3d u0 = Eigen::Vector3d(0.07904, 0, -0.030).normalized();
   const Eigen::Vector3d w0 = u0.cross(Eigen::Vector3d::UnitY());
