@@ -83,7 +83,8 @@ const std::vector<SideNames>& limb_names() {
       {kLeftAnkle, {"lankle", "leftankle", "leftfoot", "lfoot"}},
       {kLeftToe, {"lefttoebase", "ltoebase", "lefttoe", "ltoe", "lefttoes", "ltoes", "lball",
                   "leftball", "lfoot", "leftfoot"}},
-      {kLeftShoulder, {"leftarm", "lupperarm", "leftupperarm", "larm", "lhumerus", "lshoulder"}},
+      {kLeftShoulder, {"leftarm", "lupperarm", "leftupperarm", "larm", "lhumerus", "lshoulder",
+                       "leftshoulder"}},  // last: ptnet's own canonical names (CMU's is the clavicle)
       {kLeftElbow, {"leftforearm", "lforearm", "lelbow", "leftelbow", "llowerarm",
                     "leftlowerarm", "lradius"}},
       {kLeftWrist, {"lwrist", "leftwrist", "lefthand", "lhand"}},
