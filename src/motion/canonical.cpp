@@ -84,7 +84,7 @@ const std::vector<SideNames>& limb_names() {
       {kLeftToe, {"lefttoebase", "ltoebase", "lefttoe", "ltoe", "lefttoes", "ltoes", "lball",
                   "leftball", "lfoot", "leftfoot"}},
       {kLeftShoulder, {"leftarm", "lupperarm", "leftupperarm", "larm", "lhumerus", "lshoulder",
-                       "leftshoulder"}},  // last: ptnet's own canonical names (CMU's is the clavicle)
+                       "leftshoulder"}},
       {kLeftElbow, {"leftforearm", "lforearm", "lelbow", "leftelbow", "llowerarm",
                     "leftlowerarm", "lradius"}},
       {kLeftWrist, {"lwrist", "leftwrist", "lefthand", "lhand"}},
