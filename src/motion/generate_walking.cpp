@@ -157,7 +157,7 @@ Clip walking(const Style& st, rig::Rng& rng, double seconds, double fps) {
     c.pelvis = {pv.x(), pv.y(), hip_z};
     walking_upper_body(st, h, step_len, c, pv.z(), swing, 1.0);
     clip.controls.push_back(c);
-    clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.004) * h);
+    clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.015) * h);  // stance knee ~15 deg
   }
   return clip;
 }
