@@ -57,7 +57,13 @@ void walking_upper_body(const Style& st, double h, double step_len, rig::Control
   }
 }
 
-Clip walking(const Style& st, rig::Rng& rng, double seconds, double fps) {
+Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
+  // Per-take variation around the performer's style.
+  Style st = style;
+  st.heel_strike *= rng.uniform(0.85, 1.15);
+  st.toe_off *= rng.uniform(0.9, 1.1);
+  st.trunk_lean += deg(rng.uniform(-1.5, 1.5));
+  st.arm_swing *= rng.uniform(0.8, 1.25);
   const double h = st.height_m;
   const double step_time = 1 / (st.cadence * rng.uniform(0.97, 1.03));
   const double step_len = 0.5 * st.stride * h * rng.uniform(0.95, 1.04);
