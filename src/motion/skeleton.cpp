@@ -24,8 +24,9 @@ Pose canonical_rest_offsets(double height_cm) {
     throw Error("canonical_rest_offsets: expected a positive height in cm, found " +
                 std::to_string(height_cm));
   const double h = height_cm / 100.0;
-  // Hip joint centres ~half the hip (trochanter) width apart: 0.0475 H each side.
-  const double hip_half = 0.25 * kLen.hip_width;
+  // Hip joint centres ~half the hip (trochanter) width apart: 0.191 H / 4,
+  // 0.0475 H each side as in the team skeleton.
+  const double hip_half = 0.0475;
   const double shoulder_half = 0.5 * kLen.shoulder_width;  // acromion at the shoulder breadth
   const double spine = 0.070;                              // pelvis -> lumbar (0.600 H)
   const double chest = kLen.chest - kLen.hip - spine;      // -> 0.720 H (nipple)
