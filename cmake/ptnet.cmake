@@ -7,6 +7,10 @@ set(PTNET_STAGES "" CACHE INTERNAL "stage libraries defined so far")
 
 function(ptnet_stage name)
   cmake_parse_arguments(S "TORCH" "" "SOURCES;DEPENDS;LIBS" ${ARGN})
+  if(NOT S_SOURCES)
+    message(STATUS "ptnet: stage ${name} has no sources yet; skipped")
+    return()
+  endif()
   add_library(ptnet_${name} STATIC ${S_SOURCES})
   add_library(ptnet::${name} ALIAS ptnet_${name})
   target_include_directories(ptnet_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include

@@ -1,0 +1,129 @@
+// ptnet/eval.hpp: metrics of transferred pressure sequences against ground
+// truth, and the paper's Table 2 (per category, seen / unseen, beside the
+// naive baselines).
+//
+//   ptnet::SequenceMetrics m = ptnet::compare(predicted, truth, {});
+//   std::cout << m.rmse_kpa << " " << m.binary_r2 << "\n";
+//
+//   std::vector<ptnet::EvalRow> rows = ...;      // one per pair x method
+//   std::cout << ptnet::format_table(rows);      // Markdown, paper layout
+//
+// Definitions (docs/results.md repeats them):
+//  - RMSE (kPa) over all cells and frames.
+//  - Binary R^2: both maps binarised (cell > threshold, default 0.5 kPa -> 1),
+//    then 1 - SS_res / SS_tot with SS_tot taken about the ground truth's mean.
+//    When the ground truth is constant (SS_tot = 0) the score is 1 if the
+//    binarised maps are identical and 0 otherwise: never NaN.
+//  - Centre-of-pressure error (cm): mean distance between the two maps' centres
+//    of pressure over frames where both carry load (NaN-free: 0 frames -> 0,
+//    and cop_frames = 0 says so).
+//  - Total-force error (%): |sum(pred) - sum(truth)| / sum(truth) * 100 over the
+//    whole sequence (0 when both are empty, 100 when only truth is empty).
+//  - Contact IoU: binarised maps, |A and B| / |A or B| over all cells and frames
+//    (1 when both are empty).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ptnet/body_spec.hpp"
+#include "ptnet/pressure.hpp"
+
+namespace ptnet {
+
+struct MetricOptions {
+  double threshold_kpa = 0.5;  // binarisation threshold for binary R^2 and IoU
+};
+
+struct SequenceMetrics {
+  double rmse_kpa = 0;
+  double binary_r2 = 0;
+  double cop_error_cm = 0;
+  int cop_frames = 0;  // frames where both maps carry load
+  double force_error_pct = 0;
+  double contact_iou = 0;
+};
+
+// Raw metrics on flat arrays of equal length n (kPa).
+double rmse(const float* predicted, const float* truth, std::size_t n);
+double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa);
+double contact_iou(const float* predicted, const float* truth, std::size_t n,
+                   double threshold_kpa);
+
+// All metrics of two sequences of the same shape (throws Error otherwise).
+SequenceMetrics compare(const PressureSequence& predicted, const PressureSequence& truth,
+                        const MetricOptions& options);
+
+// Naive baselines of the paper: the source unchanged, and the source scaled by
+// the target/source weight ratio.
+PressureSequence copy_baseline(const PressureSequence& source);
+PressureSequence weight_ratio_baseline(const PressureSequence& source, double source_weight_kg,
+                                       double target_weight_kg);
+
+// One evaluated (source -> target) pair on one motion, for one method.
+struct EvalRow {
+  std::string method;    // "model", "copy", "weight_ratio"
+  std::string motion_id;
+  std::string category;  // walking | rom | freestyle | acting
+  int take = 1;          // 1 = seen motion, 2 = unseen
+  std::string source_sequence, target_sequence;
+  std::string source_body, target_body;
+  int frames = 0;
+  SequenceMetrics metrics;
+};
+
+// Markdown table in the layout of the paper's Table 2: rows per category
+// (seen, then unseen) and their average; columns RMSE and binary R^2 of each
+// method, then CoP error, force error and IoU of the model. Category and
+// average values are means over rows (pairs) of that group.
+std::string format_table(const std::vector<EvalRow>& rows);
+
+// metrics.csv: one row per pair, sequence and method; read back exactly.
+std::string format_metrics_csv(const std::vector<EvalRow>& rows);
+std::vector<EvalRow> parse_metrics_csv(const std::string& text, const std::string& source);
+
+// Group means as printed by format_table, for JSON output and tests.
+struct GroupSummary {
+  std::string method, group;  // group: category name or "average"
+  bool seen = true;
+  int rows = 0;
+  SequenceMetrics mean;
+};
+std::vector<GroupSummary> summarise(const std::vector<EvalRow>& rows);
+
+}  // namespace ptnet
+
+// ------------------------------------------------------------ the protocol
+
+namespace ptnet {
+class Dataset;
+
+// The model under test: source sequence and attributes -> sequence for target.
+using TransferFn = std::function<PressureSequence(
+    const PressureSequence& source, const BodySpec& source_body, const BodySpec& target_body)>;
+
+struct EvaluateOptions {
+  MetricOptions metrics;
+  // Called after each pair with (pairs done, pairs total).
+  std::function<void(int, int)> progress;
+};
+
+// One test pair: the same motion on two different `original` bodies.
+struct TestPair {
+  std::string motion_id, category;
+  int take = 1;
+  std::string source_sequence, target_sequence;
+};
+
+// All ordered pairs of two different original bodies on the same motion, in
+// a deterministic order (by motion, then source, then target).
+std::vector<TestPair> test_pairs(const Dataset& dataset);
+
+// Evaluates every test pair with the model and the two baselines: three
+// EvalRows per pair (methods "model", "copy", "weight_ratio"). Throws Error if
+// the dataset has no test pairs (it needs >= 2 original bodies).
+std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& model,
+                                    const EvaluateOptions& options);
+
+}  // namespace ptnet

@@ -1,0 +1,111 @@
+// Metrics of a predicted pressure sequence against ground truth (eval.hpp).
+#include <cmath>
+
+#include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
+
+namespace ptnet {
+
+double rmse(const float* predicted, const float* truth, std::size_t n) {
+  if (n == 0) return 0;
+  double sse = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = double(predicted[i]) - double(truth[i]);
+    sse += d * d;
+  }
+  return std::sqrt(sse / double(n));
+}
+
+double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
+  if (n == 0) return 1;
+  std::size_t ones = 0, mismatches = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;
+    ones += t;
+    mismatches += (t != p);
+  }
+  // Binary values: SS_res counts mismatches; SS_tot = n * q * (1 - q), q = mean.
+  const double q = double(ones) / double(n);
+  const double ss_tot = double(n) * q * (1.0 - q);
+  const double ss_res = double(mismatches);
+  if (ones == 0 || ones == n) return mismatches == 0 ? 1.0 : 0.0;  // constant truth
+  return 1.0 - ss_res / ss_tot;
+}
+
+double contact_iou(const float* predicted, const float* truth, std::size_t n,
+                   double threshold_kpa) {
+  std::size_t both = 0, either = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;
+    both += (t && p);
+    either += (t || p);
+  }
+  return either == 0 ? 1.0 : double(both) / double(either);
+}
+
+namespace {
+// Centre of pressure of one frame in cell units; false if it carries no load.
+bool centre_of_pressure(const float* frame, const MatSpec& mat, double& row, double& col,
+                        double& total) {
+  total = 0;
+  double r = 0, c = 0;
+  for (int i = 0; i < mat.rows; ++i)
+    for (int j = 0; j < mat.cols; ++j) {
+      const double p = std::max(0.0f, frame[i * mat.cols + j]);
+      total += p;
+      r += p * i;
+      c += p * j;
+    }
+  if (total <= 0) return false;
+  row = r / total;
+  col = c / total;
+  return true;
+}
+}  // namespace
+
+SequenceMetrics compare(const PressureSequence& predicted, const PressureSequence& truth,
+                        const MetricOptions& options) {
+  if (!(predicted.mat == truth.mat) || predicted.frames() != truth.frames())
+    throw Error("compare: shapes differ (" + std::to_string(predicted.frames()) + " x " +
+                std::to_string(predicted.mat.rows) + " x " + std::to_string(predicted.mat.cols) +
+                " vs " + std::to_string(truth.frames()) + " x " +
+                std::to_string(truth.mat.rows) + " x " + std::to_string(truth.mat.cols) + ")");
+  const std::size_t n = truth.kpa.size();
+  SequenceMetrics m;
+  m.rmse_kpa = rmse(predicted.kpa.data(), truth.kpa.data(), n);
+  m.binary_r2 = binary_r2(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
+  m.contact_iou = contact_iou(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
+
+  double force_p = 0, force_t = 0, cop_sum_cells = 0;
+  for (int t = 0; t < truth.frames(); ++t) {
+    double rp, cp, fp, rt, ct, ft;
+    const bool has_p = centre_of_pressure(predicted.frame(t), truth.mat, rp, cp, fp);
+    const bool has_t = centre_of_pressure(truth.frame(t), truth.mat, rt, ct, ft);
+    force_p += fp;
+    force_t += ft;
+    if (has_p && has_t) {
+      cop_sum_cells += std::hypot(rp - rt, cp - ct);
+      ++m.cop_frames;
+    }
+  }
+  m.cop_error_cm = m.cop_frames ? cop_sum_cells / m.cop_frames * truth.mat.pitch_m * 100.0 : 0.0;
+  if (force_t > 0)
+    m.force_error_pct = std::abs(force_p - force_t) / force_t * 100.0;
+  else
+    m.force_error_pct = force_p > 0 ? 100.0 : 0.0;
+  return m;
+}
+
+PressureSequence copy_baseline(const PressureSequence& source) { return source; }
+
+PressureSequence weight_ratio_baseline(const PressureSequence& source, double source_weight_kg,
+                                       double target_weight_kg) {
+  if (!(source_weight_kg > 0) || !(target_weight_kg > 0))
+    throw Error("weight_ratio_baseline: weights must be positive");
+  PressureSequence out = source;
+  const float ratio = float(target_weight_kg / source_weight_kg);
+  for (float& v : out.kpa) v *= ratio;
+  return out;
+}
+
+}  // namespace ptnet

@@ -1,0 +1,208 @@
+// Table 2 of the paper from evaluated rows; metrics.csv in and out (eval.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
+
+namespace ptnet {
+namespace {
+
+const std::vector<std::string> kCategoryOrder{"walking", "rom", "freestyle", "acting"};
+const std::vector<std::string> kMethodOrder{"model", "copy", "weight_ratio"};
+
+void accumulate(SequenceMetrics& sum, const SequenceMetrics& m) {
+  sum.rmse_kpa += m.rmse_kpa;
+  sum.binary_r2 += m.binary_r2;
+  sum.cop_error_cm += m.cop_error_cm;
+  sum.cop_frames += m.cop_frames;
+  sum.force_error_pct += m.force_error_pct;
+  sum.contact_iou += m.contact_iou;
+}
+
+SequenceMetrics divide(SequenceMetrics s, int n) {
+  if (n == 0) return s;
+  s.rmse_kpa /= n;
+  s.binary_r2 /= n;
+  s.cop_error_cm /= n;
+  s.force_error_pct /= n;
+  s.contact_iou /= n;
+  return s;
+}
+
+std::vector<std::string> ordered(std::vector<std::string> found,
+                                 const std::vector<std::string>& preferred) {
+  std::sort(found.begin(), found.end(), [&](const std::string& a, const std::string& b) {
+    auto ia = std::find(preferred.begin(), preferred.end(), a) - preferred.begin();
+    auto ib = std::find(preferred.begin(), preferred.end(), b) - preferred.begin();
+    return ia != ib ? ia < ib : a < b;
+  });
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  return found;
+}
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<GroupSummary> summarise(const std::vector<EvalRow>& rows) {
+  std::vector<std::string> methods, categories;
+  for (const auto& r : rows) {
+    methods.push_back(r.method);
+    categories.push_back(r.category);
+  }
+  methods = ordered(methods, kMethodOrder);
+  categories = ordered(categories, kCategoryOrder);
+  std::vector<GroupSummary> out;
+  for (bool seen : {true, false})
+    for (const auto& method : methods) {
+      GroupSummary avg{method, "average", seen, 0, {}};
+      for (const auto& category : categories) {
+        GroupSummary g{method, category, seen, 0, {}};
+        for (const auto& r : rows)
+          if (r.method == method && r.category == category && (r.take == 1) == seen) {
+            accumulate(g.mean, r.metrics);
+            accumulate(avg.mean, r.metrics);
+            ++g.rows;
+            ++avg.rows;
+          }
+        if (g.rows == 0) continue;
+        g.mean = divide(g.mean, g.rows);
+        out.push_back(g);
+      }
+      if (avg.rows == 0) continue;
+      avg.mean = divide(avg.mean, avg.rows);
+      out.push_back(avg);
+    }
+  return out;
+}
+
+std::string format_table(const std::vector<EvalRow>& rows) {
+  const auto groups = summarise(rows);
+  std::vector<std::string> methods;
+  for (const auto& g : groups) methods.push_back(g.method);
+  methods = ordered(methods, kMethodOrder);
+  auto find = [&](const std::string& method, const std::string& group, bool seen)
+      -> const GroupSummary* {
+    for (const auto& g : groups)
+      if (g.method == method && g.group == group && g.seen == seen) return &g;
+    return nullptr;
+  };
+  const bool has_model = std::find(methods.begin(), methods.end(), "model") != methods.end();
+  std::ostringstream out;
+  out << "| Motion category | pairs |";
+  for (const auto& m : methods) out << " RMSE " << m << " (kPa) | bin. R^2 " << m << " |";
+  if (has_model) out << " CoP err. model (cm) | force err. model (%) | IoU model |";
+  out << "\n|---|---:|";
+  for (std::size_t i = 0; i < methods.size(); ++i) out << "---:|---:|";
+  if (has_model) out << "---:|---:|---:|";
+  out << "\n";
+  for (bool seen : {true, false}) {
+    std::vector<std::string> cats;
+    for (const auto& g : groups)
+      if (g.seen == seen && g.group != "average") cats.push_back(g.group);
+    cats = ordered(cats, kCategoryOrder);
+    if (cats.empty()) continue;
+    const int blank = 1 + 2 * int(methods.size()) + (has_model ? 3 : 0);
+    out << "| **" << (seen ? "Seen motions (take 1)" : "Unseen motions (take 2)") << "** |";
+    for (int i = 0; i < blank; ++i) out << " |";
+    out << "\n";
+    cats.push_back("average");
+    for (const auto& cat : cats) {
+      const GroupSummary* first = find(methods.front(), cat, seen);
+      out << "| " << (cat == "average" ? "**Average**" : cat) << " | "
+          << (first ? first->rows : 0) << " |";
+      for (const auto& m : methods) {
+        const GroupSummary* g = find(m, cat, seen);
+        out << " " << (g ? fixed(g->mean.rmse_kpa, 2) : "-") << " | "
+            << (g ? fixed(g->mean.binary_r2, 3) : "-") << " |";
+      }
+      if (has_model) {
+        const GroupSummary* g = find("model", cat, seen);
+        out << " " << (g ? fixed(g->mean.cop_error_cm, 2) : "-") << " | "
+            << (g ? fixed(g->mean.force_error_pct, 1) : "-") << " | "
+            << (g ? fixed(g->mean.contact_iou, 3) : "-") << " |";
+      }
+      out << "\n";
+    }
+  }
+  return out.str();
+}
+
+namespace {
+const char* kCsvHeader =
+    "method,motion_id,category,take,source_sequence,target_sequence,source_body,target_body,"
+    "frames,rmse_kpa,binary_r2,cop_error_cm,cop_frames,force_error_pct,contact_iou";
+
+std::string full(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+}  // namespace
+
+std::string format_metrics_csv(const std::vector<EvalRow>& rows) {
+  std::ostringstream out;
+  out << kCsvHeader << "\n";
+  for (const auto& r : rows) {
+    const auto& m = r.metrics;
+    out << r.method << ',' << r.motion_id << ',' << r.category << ',' << r.take << ','
+        << r.source_sequence << ',' << r.target_sequence << ',' << r.source_body << ','
+        << r.target_body << ',' << r.frames << ',' << full(m.rmse_kpa) << ','
+        << full(m.binary_r2) << ',' << full(m.cop_error_cm) << ',' << m.cop_frames << ','
+        << full(m.force_error_pct) << ',' << full(m.contact_iou) << "\n";
+  }
+  return out.str();
+}
+
+std::vector<EvalRow> parse_metrics_csv(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
+  std::string line;
+  long line_no = 1;
+  if (!std::getline(in, line)) throw Error::in(source, "empty file, expected a metrics.csv header");
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line != kCsvHeader) throw Error::at(source, 1, "the metrics.csv header", "'" + line + "'");
+  std::vector<EvalRow> rows;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) f.push_back(cell);
+    if (f.size() != 15)
+      throw Error::at(source, line_no, "15 columns", std::to_string(f.size()));
+    try {
+      EvalRow r;
+      r.method = f[0];
+      r.motion_id = f[1];
+      r.category = f[2];
+      r.take = std::stoi(f[3]);
+      r.source_sequence = f[4];
+      r.target_sequence = f[5];
+      r.source_body = f[6];
+      r.target_body = f[7];
+      r.frames = std::stoi(f[8]);
+      r.metrics.rmse_kpa = std::stod(f[9]);
+      r.metrics.binary_r2 = std::stod(f[10]);
+      r.metrics.cop_error_cm = std::stod(f[11]);
+      r.metrics.cop_frames = std::stoi(f[12]);
+      r.metrics.force_error_pct = std::stod(f[13]);
+      r.metrics.contact_iou = std::stod(f[14]);
+      rows.push_back(r);
+    } catch (const std::logic_error&) {
+      throw Error::at(source, line_no, "numbers in columns take, frames and metrics", "'" + line + "'");
+    }
+  }
+  return rows;
+}
+
+}  // namespace ptnet

@@ -1,0 +1,142 @@
+// Metrics on hand-computed cases (issue 5): a map against itself, known
+// differences, constant ground truth, and the table recomputed from the CSV.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
+
+namespace ptnet {
+namespace {
+
+PressureSequence blank(int frames) { return PressureSequence(MatSpec{4, 3, 0.02}, frames, 30); }
+
+TEST(Metrics, MapAgainstItselfIsPerfect) {
+  PressureSequence s = blank(2);
+  s.at(0, 1, 1) = 10;
+  s.at(0, 2, 1) = 20;
+  s.at(1, 0, 0) = 5;
+  const SequenceMetrics m = compare(s, s, {});
+  EXPECT_DOUBLE_EQ(m.rmse_kpa, 0);
+  EXPECT_DOUBLE_EQ(m.binary_r2, 1);
+  EXPECT_DOUBLE_EQ(m.cop_error_cm, 0);
+  EXPECT_EQ(m.cop_frames, 2);
+  EXPECT_DOUBLE_EQ(m.force_error_pct, 0);
+  EXPECT_DOUBLE_EQ(m.contact_iou, 1);
+}
+
+TEST(Metrics, RmseOfKnownDifference) {
+  // 24 cells; two differ by 6 kPa: RMSE = sqrt(2 * 36 / 24) = sqrt(3).
+  PressureSequence a = blank(2), b = blank(2);
+  a.at(0, 0, 0) = 6;
+  b.at(1, 3, 2) = 6;
+  EXPECT_NEAR(rmse(a.kpa.data(), b.kpa.data(), a.kpa.size()), std::sqrt(3.0), 1e-12);
+}
+
+TEST(Metrics, BinaryR2OfKnownCase) {
+  // Truth: 3 of 12 cells loaded, q = 0.25, SS_tot = 12 * 0.25 * 0.75 = 2.25.
+  // Prediction misses one loaded cell and adds one: SS_res = 2.
+  const float truth[12] = {1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const float pred[12] = {1, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0};
+  EXPECT_NEAR(binary_r2(pred, truth, 12, 0.5), 1.0 - 2.0 / 2.25, 1e-12);
+  // Values only matter through the threshold.
+  const float pred_scaled[12] = {9, 3, 0.2f, 7, 0, 0, 0, 0, 0.4f, 0, 0, 0};
+  EXPECT_NEAR(binary_r2(pred_scaled, truth, 12, 0.5), 1.0 - 2.0 / 2.25, 1e-12);
+}
+
+TEST(Metrics, ConstantGroundTruthIsDefinedNeverNaN) {
+  const float zeros[4] = {0, 0, 0, 0};
+  const float one[4] = {0, 3, 0, 0};
+  EXPECT_DOUBLE_EQ(binary_r2(zeros, zeros, 4, 0.5), 1.0);
+  EXPECT_DOUBLE_EQ(binary_r2(one, zeros, 4, 0.5), 0.0);
+  const float full[4] = {2, 2, 2, 2};
+  EXPECT_DOUBLE_EQ(binary_r2(full, full, 4, 0.5), 1.0);
+  EXPECT_DOUBLE_EQ(binary_r2(one, full, 4, 0.5), 0.0);
+  PressureSequence a = blank(1), b = blank(1);
+  const SequenceMetrics m = compare(a, b, {});
+  EXPECT_FALSE(std::isnan(m.binary_r2));
+  EXPECT_FALSE(std::isnan(m.cop_error_cm));
+  EXPECT_EQ(m.cop_frames, 0);
+  EXPECT_DOUBLE_EQ(m.contact_iou, 1.0);
+  EXPECT_DOUBLE_EQ(m.force_error_pct, 0.0);
+}
+
+TEST(Metrics, CentreOfPressureForceAndIoU) {
+  // One loaded cell moved by 3 rows and 1 column: CoP error = sqrt(10) cells.
+  PressureSequence a = blank(1), b = blank(1);
+  a.at(0, 0, 0) = 10;
+  b.at(0, 3, 1) = 15;
+  const SequenceMetrics m = compare(a, b, {});
+  EXPECT_NEAR(m.cop_error_cm, std::sqrt(10.0) * 2.0, 1e-9);
+  EXPECT_NEAR(m.force_error_pct, 5.0 / 15.0 * 100.0, 1e-9);
+  EXPECT_DOUBLE_EQ(m.contact_iou, 0.0);
+}
+
+TEST(Metrics, WeightRatioBaselineScales) {
+  PressureSequence s = blank(1);
+  s.at(0, 1, 2) = 10;
+  const PressureSequence scaled = weight_ratio_baseline(s, 50, 75);
+  EXPECT_FLOAT_EQ(scaled.at(0, 1, 2), 15.0f);
+  EXPECT_THROW(weight_ratio_baseline(s, 0, 75), Error);
+}
+
+TEST(Metrics, ShapeMismatchIsAnError) {
+  EXPECT_THROW(compare(blank(1), blank(2), {}), Error);
+}
+
+EvalRow row(const std::string& method, const std::string& category, int take, double rmse_kpa,
+            double r2) {
+  EvalRow r;
+  r.method = method;
+  r.category = category;
+  r.take = take;
+  r.motion_id = category + std::to_string(take);
+  r.source_sequence = "s";
+  r.target_sequence = "t";
+  r.source_body = "o1";
+  r.target_body = "o2";
+  r.frames = 30;
+  r.metrics.rmse_kpa = rmse_kpa;
+  r.metrics.binary_r2 = r2;
+  r.metrics.contact_iou = 0.5;
+  return r;
+}
+
+TEST(Table, GroupMeansAndCsvRoundTrip) {
+  std::vector<EvalRow> rows{row("model", "walking", 1, 2.0, 0.9), row("model", "walking", 1, 4.0, 0.7),
+                            row("model", "rom", 1, 6.0, 0.5), row("copy", "walking", 1, 10.0, 0.4),
+                            row("model", "acting", 2, 1.0, 0.95)};
+  const auto groups = summarise(rows);
+  auto get = [&](const std::string& method, const std::string& group, bool seen) {
+    for (const auto& g : groups)
+      if (g.method == method && g.group == group && g.seen == seen) return g;
+    ADD_FAILURE() << "no group " << method << "/" << group;
+    return GroupSummary{};
+  };
+  EXPECT_DOUBLE_EQ(get("model", "walking", true).mean.rmse_kpa, 3.0);
+  EXPECT_DOUBLE_EQ(get("model", "average", true).mean.rmse_kpa, 4.0);
+  EXPECT_NEAR(get("model", "average", true).mean.binary_r2, 0.7, 1e-12);
+  EXPECT_DOUBLE_EQ(get("model", "average", false).mean.binary_r2, 0.95);
+
+  // Recompute the whole table from the CSV: identical output.
+  const std::string csv = format_metrics_csv(rows);
+  const auto back = parse_metrics_csv(csv, "metrics.csv");
+  ASSERT_EQ(back.size(), rows.size());
+  EXPECT_EQ(format_table(back), format_table(rows));
+  const std::string table = format_table(rows);
+  EXPECT_NE(table.find("| walking | 2 | 3.00 | 0.800 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("Unseen motions"), std::string::npos);
+}
+
+TEST(Table, MalformedCsvNamesFileAndLine) {
+  try {
+    parse_metrics_csv(format_metrics_csv({}) + "model,x\n", "m.csv");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "m.csv:2: expected 15 columns, found 2");
+  }
+}
+
+}  // namespace
+}  // namespace ptnet
