@@ -46,7 +46,6 @@ class PressureTransferNetImpl : public torch::nn::Module {
   torch::nn::BatchNorm2d bn1, bn2, bn3;
   torch::nn::MaxPool2d pool;
   torch::nn::Linear fc_features, fc_latent, fc_decode;
-  torch::nn::MaxUnpool2d unpool;
   torch::nn::ConvTranspose2d deconv3, deconv2, deconv1;
   torch::nn::BatchNorm2d dbn3, dbn2;
 };

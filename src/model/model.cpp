@@ -21,6 +21,8 @@ nn::ConvTranspose2dOptions deconv_options(int in, int out) {
   return nn::ConvTranspose2dOptions(in, out, 3).padding(1);
 }
 int skip_factor(const ModelConfig& c) { return c.arch == Arch::skip ? 2 : 1; }
+// (MaxUnpool2d of LibTorch 1.13 rejects a 2-element output_size, hence the
+// functional torch::max_unpool2d in forward().)
 std::int64_t flat_size(const ModelConfig& c) {
   auto s = pooled_size(c, kPoolLevels);
   return std::int64_t(c.channels[2]) * s[0] * s[1];
@@ -44,7 +46,6 @@ PressureTransferNetImpl::PressureTransferNetImpl(const ModelConfig& config)
       fc_features(flat_size(config), config.hidden),
       fc_latent(config.hidden + kAttributes, config.latent),
       fc_decode(config.latent + kAttributes, flat_size(config)),
-      unpool(nn::MaxUnpool2dOptions(2).stride(2)),
       deconv3(deconv_options(config.channels[2] * skip_factor(config), config.channels[1])),
       deconv2(deconv_options(config.channels[1] * skip_factor(config), config.channels[0])),
       deconv1(deconv_options(config.channels[0] * skip_factor(config), config.window)),
@@ -60,7 +61,6 @@ PressureTransferNetImpl::PressureTransferNetImpl(const ModelConfig& config)
   register_module("fc_features", fc_features);
   register_module("fc_latent", fc_latent);
   register_module("fc_decode", fc_decode);
-  register_module("unpool", unpool);
   register_module("deconv3", deconv3);
   register_module("deconv2", deconv2);
   register_module("deconv1", deconv1);
@@ -93,13 +93,13 @@ torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const tor
   // Decoder: [N, latent + A] -> [N,C3,H3,W3] -> ... -> [N,T,H,W]
   auto d = torch::relu(fc_decode(torch::cat({z, target}, 1)));
   d = d.view({n, c.channels[2], s3[0], s3[1]});
-  d = unpool(d, i3, std::vector<int64_t>{s2[0], s2[1]});            // [N,C3,H2,W2]
+  d = torch::max_unpool2d(d, i3, {s2[0], s2[1]});            // [N,C3,H2,W2]
   if (c.arch == Arch::skip) d = torch::cat({d, e3}, 1);
   d = torch::relu(dbn3(deconv3(d)));                                 // [N,C2,H2,W2]
-  d = unpool(d, i2, std::vector<int64_t>{s1[0], s1[1]});            // [N,C2,H1,W1]
+  d = torch::max_unpool2d(d, i2, {s1[0], s1[1]});            // [N,C2,H1,W1]
   if (c.arch == Arch::skip) d = torch::cat({d, e2}, 1);
   d = torch::relu(dbn2(deconv2(d)));                                 // [N,C1,H1,W1]
-  d = unpool(d, i1, std::vector<int64_t>{s0[0], s0[1]});            // [N,C1,H,W]
+  d = torch::max_unpool2d(d, i1, {s0[0], s0[1]});            // [N,C1,H,W]
   if (c.arch == Arch::skip) d = torch::cat({d, e1}, 1);
   return torch::relu(deconv1(d));                                    // [N,T,H,W] >= 0
 }

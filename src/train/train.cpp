@@ -250,8 +250,8 @@ State load_checkpoint(const std::string& path, PressureTransferNet& net, torch::
   }
   read_weights(net, model, path);
   opt.load(optim);
-  torch::Tensor t;
   auto read_t = [&](const char* key) {
+    torch::Tensor t;  // fresh: reading into a defined tensor would set_() it
     if (!archive.try_read(key, t)) throw Error::in(path, std::string("checkpoint lacks \"") + key + "\"");
     return t;
   };
@@ -351,7 +351,10 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
 
   State s;
   if (o.resume) s = load_checkpoint(ckpt_path, net, optimizer);
-  else write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+  else {
+    write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+    save_checkpoint(ckpt_path, net, optimizer, s);  // epoch 0: the initial weights
+  }
 
   auto log = [&](const std::string& line) {
     if (!o.quiet) std::cerr << line << std::endl;

@@ -58,11 +58,14 @@ WindowIndex WindowIndex::build(const PressureSource& source, const WindowOptions
     // training starts keep `window - 1` frames away from it on both sides.
     std::vector<Range> train, val;
     int n_val = options.val_fraction > 0 ? std::max(1, int(std::lround(starts * options.val_fraction))) : 0;
-    if (n_val > 0 && starts >= 2 * options.window + n_val) {
+    const int gap = options.window - 1;
+    if (n_val > 0 && starts >= n_val + gap + 1) {
+      // Anywhere when there is room for training windows on both sides,
+      // else at the end (one gap only).
       std::mt19937_64 rng(options.seed ^ fnv1a(motion));
-      const int v0 = std::uniform_int_distribution<int>(0, starts - n_val)(rng);
+      const int v0 = starts >= 3 * (n_val + gap) ? std::uniform_int_distribution<int>(0, starts - n_val)(rng)
+                                                 : starts - n_val;
       val.push_back({v0, v0 + n_val});
-      const int gap = options.window - 1;
       if (v0 - gap > 0) train.push_back({0, v0 - gap});
       if (v0 + n_val + gap < starts) train.push_back({v0 + n_val + gap, starts});
     } else {
