@@ -65,6 +65,7 @@ void run(const TransferCli& c) {
   to.device = c.device;
   Transfer net(c.model, to);
   const BodySpec target = parse_body(c.target, "--target");
+  check_body_range(target, "target body");
 
   PressureSequence src;
   BodySpec source;
@@ -87,6 +88,7 @@ void run(const TransferCli& c) {
     info.fps = d.info().fps;
     source = c.source.empty() ? d.body(meta.body_id) : parse_body(c.source, "--source");
   }
+  check_body_range(source, "source body");
   if (!globals().quiet)
     std::cerr << "transfer: " << src.frames() << " frames, " << sex_name_text(source) << " " << source.height_cm
               << " cm " << source.weight_kg << " kg -> " << sex_name_text(target) << " " << target.height_cm
