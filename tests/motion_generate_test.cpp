@@ -172,6 +172,12 @@ TEST(Generate, EveryCategoryIsGroundedAndPlausible) {
         for (const auto& v : p) ASSERT_TRUE(v.allFinite());
         const double low = lowest_sole_z(p);
         EXPECT_GT(low, -0.02);
+        // Whatever touches the floor is on the 1.6 m x 0.56 m mat.
+        for (int s = 0; s < 2; ++s) {
+          const auto sp = sole_points(p, s);
+          for (const auto& q : {sp.heel, sp.tip})
+            if (q.z() < 0.02) EXPECT_TRUE(std::abs(q.x()) <= 0.8 && std::abs(q.y()) <= 0.28) << f;
+        }
         grounded += low < 0.02;
         if (f > 0)
           for (int j = 0; j < kJointCount; ++j) vmax = std::max(vmax, (p[j] - m.frames[f - 1][j]).norm() * m.fps);
