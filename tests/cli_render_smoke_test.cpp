@@ -52,4 +52,21 @@ TEST(CliRender, PngAndGifFromADataset) {
   EXPECT_EQ(out, "ptnet: error: " + dir.file("h.jpg") + ": unknown figure type '.jpg', expected .png or .gif\n");
 }
 
+TEST(CliInfo, DescribesADataset) {
+  TempDir dir("cli_info");
+  const auto data = dir.file("data.h5");
+  ptnet::testing_util::write_small_dataset(data, 40, 5);
+  std::string out;
+  ASSERT_EQ(run("info " + data, &out), 0) << out;
+  EXPECT_NE(out.find("  sequences  4 (2 motions), 90 frames"), std::string::npos) << out;
+  EXPECT_NE(out.find("  bodies     2 (1 female, 1 male; 1 original, 1 retargeted)"), std::string::npos) << out;
+  EXPECT_NE(out.find("  b2          male        186.0       94.0  original"), std::string::npos) << out;
+  out.clear();
+  ASSERT_EQ(run("info --json " + data, &out), 0) << out;
+  EXPECT_NE(out.find("\"frames\": 90,"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(run("info " + dir.file("none.h5"), &out), 1);
+  EXPECT_EQ(out, "ptnet: error: " + dir.file("none.h5") + ": no such file\n");
+}
+
 }  // namespace
