@@ -13,6 +13,7 @@
 
 #include "command.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/data.hpp"
 #include "ptnet/motion.hpp"
 
 namespace ptnet::cli {
@@ -78,7 +79,7 @@ nlohmann::ordered_json describe(const InfoOptions& o) {
   if (ext == ".bvh") return describe_bvh(o);
   // New file types: one branch here, one describe_<type>() above.
   throw Error::in(o.file, "unsupported file type '" + (ext.empty() ? std::string("(none)") : ext) +
-                              "' (ptnet info reads .bvh)");
+                              "' (ptnet info reads .bvh and .h5)");
 }
 
 void print_text(const nlohmann::ordered_json& j) {
@@ -122,6 +123,11 @@ void setup(CLI::App& app) {
   cmd->add_flag("--keep-tpose", opt->keep_tpose,
                 "Keep a leading T-pose frame (dropped by default)");
   cmd->callback([opt]() {
+    const std::string ext = std::filesystem::path(opt->file).extension().string();
+    if (ext == ".h5" || ext == ".hdf5") {  // dataset file (data stage)
+      std::cout << describe_dataset(Dataset::open(opt->file), opt->json);
+      return;
+    }
     const nlohmann::ordered_json j = describe(*opt);
     if (opt->json)
       std::cout << j.dump(2) << "\n";

@@ -94,9 +94,10 @@ std::string describe_dataset(const Dataset& d, bool json) {
     << " x " << fmt("%.2f", info.mat.cols * info.mat.pitch_m) << " m), kPa float32\n";
   o << "  fps        " << fmt("%g", info.fps) << "\n";
   o << "  bodies     " << d.bodies().size() << " (" << females << " female, " << males << " male";
-  for (const auto& [role, n] : per_role) o << "; " << n << " " << role;
+  bool first_role = true;
+  for (const auto& [role, n] : per_role) o << (first_role ? "; " : ", ") << n << " " << role, first_role = false;
   o << ")\n";
-  o << "  sequences  " << d.sequences().size() << " (" << motions.size() << " motions), " << frames
+  o << "  sequences  " << d.sequences().size() << " (" << motions.size() << (motions.size() == 1 ? " motion), " : " motions), ") << frames
     << " frames, " << fmt("%.1f", frames / info.fps / 60) << " min\n";
   if (!per_category.empty()) {
     o << "  categories";

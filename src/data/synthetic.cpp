@@ -26,8 +26,8 @@ double plantar(double a, double l, double u) {
   const double fore = std::sin(M_PI * clamp01(u * 1.15)) * 0.9 + 0.1 * clamp01(u * 3);
   const double toes = clamp01((u - 0.45) * 2.5) * clamp01((1.0 - u) * 5);
   const double mid = 0.25 * std::sin(M_PI * u);
-  double p = heel * blob(a + 0.34, l, 0.09, 0.11) + fore * blob(a - 0.2, l + 0.02, 0.08, 0.15) +
-             toes * blob(a - 0.42, l - 0.03, 0.04, 0.1) + mid * blob(a, l - 0.1, 0.14, 0.05);
+  double p = heel * blob(a + 0.33, l, 0.11, 0.12) + fore * blob(a - 0.2, l + 0.02, 0.1, 0.16) +
+             toes * blob(a - 0.42, l - 0.03, 0.06, 0.12) + mid * blob(a, l - 0.1, 0.16, 0.06);
   // Outline of the sole: an ellipse 1 long and 0.38 wide.
   if ((a * a) / 0.25 + (l * l) / (0.19 * 0.19) > 1.0) return 0.0;
   return p;
@@ -56,9 +56,9 @@ PressureSequence synthetic_walk(const MatSpec& mat, int frames, double fps, doub
       const double u = (time - k * kStepPeriodS) / kStanceS;
       if (u < 0 || u > 1) continue;
       const bool left = k % 2 == 0;
-      // Walking loops back to the near end when it leaves the mat.
-      const double span = L - 1.2 * foot_len;
-      double xc = x0 + std::fmod(k * step_len, span) + jitter[k];
+      // Passes restart at the near end once the walker has left the mat.
+      const int per_pass = std::max(1, int((L - 1.2 * foot_len) / step_len) + 1);
+      const double xc = x0 + (k % per_pass) * step_len + jitter[k];
       const double yc = (left ? 1 : -1) * half_gait;
       // Vertical load: double-hump over stance, shared with the other foot.
       const double load = weight_kg * kG * (0.55 * std::sin(M_PI * u) + 0.45 * std::pow(std::sin(M_PI * u), 6) * 1.1);

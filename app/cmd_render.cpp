@@ -1,0 +1,63 @@
+// ptnet render: heatmap figures of dataset sequences (PNG strip or GIF).
+#include <memory>
+
+#include "command.hpp"
+#include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/viz.hpp"
+
+namespace {
+
+struct RenderOptions {
+  std::string dataset;
+  std::vector<std::string> sequences;
+  std::string out;
+  int frames = 0;
+  std::vector<int> frame_list;
+  bool cop = false;
+  double vmax_kpa = 0;
+  int cell_px = 7;
+  bool force = false;
+};
+
+void run(const RenderOptions& o) {
+  ptnet::Dataset d = ptnet::Dataset::open(o.dataset);
+  ptnet::FigureOptions fig;
+  fig.cell_px = o.cell_px;
+  fig.vmax_kpa = o.vmax_kpa;
+  fig.cop = o.cop;
+  fig.frames = o.frames;
+  fig.frame_list = o.frame_list;
+  ptnet::render_figure(d, o.sequences, o.out, fig, o.force);
+  if (!ptnet::cli::globals().quiet) std::fprintf(stderr, "render: wrote %s\n", o.out.c_str());
+}
+
+void setup(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  auto* cmd = app.add_subcommand(
+      "render",
+      "Draw pressure heatmaps of dataset sequences: a PNG strip of frames (one row per\n"
+      "sequence) or an animated GIF at the sequence's frame rate (sequences side by side).\n"
+      "Viridis colours on one shared kPa scale; the mat's far end (row 0) at the top, the\n"
+      "walker's left (col 0) on the left.");
+  cmd->add_option("dataset", o->dataset, "Dataset file (.h5)")->required();
+  cmd->add_option("-s,--sequence", o->sequences, "Sequence to draw (repeat for several; `ptnet info` lists them)")
+      ->required();
+  cmd->add_option("-o,--out", o->out, "Output figure: .png (strip) or .gif (animation)")->required();
+  cmd->add_option("--frames", o->frames, "Number of evenly spaced frames (PNG default 6; GIF default all)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--frame-list", o->frame_list, "Explicit frame indices, e.g. 0,10,20")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber)
+      ->excludes("--frames");
+  cmd->add_flag("--cop", o->cop, "Draw the centre-of-pressure trace");
+  cmd->add_option("--vmax", o->vmax_kpa, "Top of the colour scale in kPa (default: data maximum, rounded up)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--cell-px", o->cell_px, "Pixels per mat cell")->capture_default_str()->check(CLI::Range(1, 40));
+  cmd->add_flag("-f,--force", o->force, "Overwrite the output if it exists");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace
+
+PTNET_COMMAND(60, setup);

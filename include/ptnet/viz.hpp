@@ -1,0 +1,104 @@
+// ptnet/viz.hpp: figures of pressure sequences (PNG strips, animated GIFs).
+//
+//   ptnet::Dataset d = ptnet::Dataset::open("data.h5");
+//   ptnet::FigureOptions opt;
+//   opt.cop = true;                                    // centre-of-pressure trace
+//   ptnet::render_figure(d, {"walk__b1", "walk__b2"}, "fig.png", opt, /*force=*/false);
+//
+// A figure draws each sequence as one row of heatmaps (PNG: a strip of frames;
+// GIF: the sequences side by side, animated at the sequence's frame rate).
+// The mat is drawn with its long axis vertical, row 0 (the far end, +x) at the
+// top and col 0 (the walker's left, +y) on the left, each cell an upscaled
+// square (nearest neighbour). Colours: viridis (perceptual, from matplotlib's
+// published table), zero pressure a light grey background, one kPa scale
+// shared by all panels, shown by a colour bar with ticks.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ptnet/data.hpp"
+#include "ptnet/pressure.hpp"
+
+namespace ptnet {
+
+struct Rgb {
+  std::uint8_t r = 0, g = 0, b = 0;
+  bool operator==(const Rgb& o) const { return r == o.r && g == o.g && b == o.b; }
+  bool operator!=(const Rgb& o) const { return !(*this == o); }
+};
+
+inline constexpr Rgb kZeroPressureColour{236, 236, 236};  // cells with no load
+inline constexpr Rgb kPageColour{255, 255, 255};
+
+// An RGB image, 8 bits per channel, row-major [height, width, 3].
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+
+  Image() = default;
+  Image(int w, int h, Rgb fill = kPageColour);
+  Rgb get(int x, int y) const;
+  void set(int x, int y, Rgb c);  // ignores pixels outside the image
+  void fill_rect(int x, int y, int w, int h, Rgb c);
+  void blit(const Image& src, int x, int y);
+};
+
+// Viridis colour map: t in [0, 1] (clamped) -> one of its 256 entries.
+Rgb viridis(double t);
+// The same map quantised to `levels` (2-256) evenly spaced entries.
+Rgb viridis(double t, int levels);
+
+// Built-in 5 x 7 bitmap font (ASCII 32-126). Each glyph takes 6 x 8 pixels
+// times `scale`; other characters are drawn as '?'.
+void draw_text(Image& image, int x, int y, const std::string& text, Rgb colour, int scale = 1);
+int text_width(const std::string& text, int scale = 1);
+inline int text_height(int scale = 1) { return 8 * scale; }
+
+// Writers (atomic, see io.hpp; refuse to overwrite without force).
+void write_png(const std::string& path, const Image& image, bool force);
+// Frames of one size; delays in hundredths of a second, one per frame. Loops forever.
+void write_gif(const std::string& path, const std::vector<Image>& frames,
+               const std::vector<int>& delays_cs, bool force);
+
+struct FigureOptions {
+  int cell_px = 7;              // pixels per mat cell
+  double vmax_kpa = 0;          // top of the colour scale; 0 = max of the data, rounded up
+  bool cop = false;             // draw the centre-of-pressure trace up to each frame
+  int frames = 0;               // N evenly spaced frames (0: PNG 6, GIF every frame)
+  std::vector<int> frame_list;  // explicit frame indices (overrides `frames`)
+};
+
+struct FigurePanel {
+  std::string title;             // e.g. the sequence name
+  std::string subtitle;          // e.g. "female, 158 cm, 52 kg"
+  const PressureSequence* sequence = nullptr;
+};
+
+// The frames a figure shows: frame_list, else `count` evenly spaced over
+// [0, frames) including the first and last. Throws Error for indices out of range.
+std::vector<int> figure_frames(const FigureOptions& options, int frames, int default_count);
+
+// The colour-scale top the figure uses: options.vmax_kpa, or the data max
+// rounded up to a tick step (1, 2, 2.5 or 5 x 10^k).
+double figure_vmax(const std::vector<FigurePanel>& panels, const FigureOptions& options);
+
+// Per-frame centre of pressure in cell coordinates (row, col of cell centres
+// = index + 0.5); NaN for frames with no load. [T] pairs.
+std::vector<std::pair<double, double>> centre_of_pressure(const PressureSequence& sequence);
+
+// One row per panel, one column per frame, colour bar on the right.
+Image render_strip(const std::vector<FigurePanel>& panels, const FigureOptions& options);
+// Panels side by side; one image per shown frame, with delays (1/100 s) that
+// follow the sequence's real frame rate.
+std::vector<Image> render_animation(const std::vector<FigurePanel>& panels,
+                                    const FigureOptions& options, std::vector<int>* delays_cs);
+// A vertical colour bar [0, vmax] kPa with tick labels and a "kPa" caption.
+Image render_colour_bar(double vmax_kpa, int bar_height_px, int text_scale);
+
+// Reads the named sequences and writes `out_path` (.png strip or .gif animation).
+void render_figure(const Dataset& dataset, const std::vector<std::string>& sequences,
+                   const std::string& out_path, const FigureOptions& options, bool force);
+
+}  // namespace ptnet
