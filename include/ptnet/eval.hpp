@@ -127,3 +127,25 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
                                     const EvaluateOptions& options);
 
 }  // namespace ptnet
+
+// ---------------------------------------------------------------- the report
+
+namespace ptnet {
+
+struct ReportOptions {
+  std::string out_dir = "report";  // created if missing
+  bool force = false;              // overwrite existing report files
+  int frames_per_category = 6;     // frames in qualitative.png per category
+  double threshold_kpa = 0.5;      // recorded in metrics.json
+};
+
+// Writes into out_dir (each file atomically): metrics.csv (one row per pair,
+// sequence and method), metrics.json (group means in the Table 2 layout, the
+// paper's figures beside them, settings), qualitative.png (per category, rows
+// source / ground truth / transferred / |error|) and qualitative_<category>.gif.
+// The figures use one seen pair per category (the first in test_pairs order),
+// transferred again with `model`. Returns the paths written.
+std::vector<std::string> write_report(const Dataset& dataset, const std::vector<EvalRow>& rows,
+                                      const TransferFn& model, const ReportOptions& options);
+
+}  // namespace ptnet
