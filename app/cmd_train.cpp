@@ -83,7 +83,7 @@ void setup(CLI::App& app) {
       "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr.\n"
       "Presets: paper = batch 1028, Adam lr 0.01 halved every 20 epochs, 500 epochs, patience 50,\n"
       "widths 64/128/256, every window at stride 1; fast = widths 16/32/64, batch 64, lr 2e-3 halved\n"
-      "every 10 epochs, 20 epochs of 4096 windows at stride 2 (minutes on 2 CPU cores).\n"
+      "every 5 epochs, 15 epochs of 4096 windows at stride 2 (minutes on a CPU core).\n"
       "Options left out keep the preset's value.");
   cmd->add_option("--data", opt->data, "Dataset file (HDF5, ptnet simulate)")->required();
   cmd->add_option("--out", opt->out, "Model folder to create")->required();
@@ -94,7 +94,7 @@ void setup(CLI::App& app) {
   cmd->add_option("--lr-halve-every", opt->lr_halve_every, "Epochs between learning-rate halvings");
   cmd->add_option("--patience", opt->patience, "Early stop after this many epochs without improvement");
   cmd->add_option("--seed", opt->seed, "Seed of weights, sampling and split (default 1)");
-  cmd->add_option("--threads", opt->threads, "CPU threads (default 1: measured fastest per core, see docs)");
+  cmd->add_option("--threads", opt->threads, "CPU threads (paper 2, fast 1: measured, see bench_model)");
   cmd->add_option("--device", opt->device, "cpu | cuda")->capture_default_str();
   cmd->add_option("--stride", opt->stride, "Frames between window starts");
   cmd->add_option("--samples-per-epoch", opt->samples_per_epoch, "Training windows per epoch (0 = all)");

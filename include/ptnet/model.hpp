@@ -37,6 +37,11 @@ class PressureTransferNetImpl : public torch::nn::Module {
   // attributes -> [N, T, H, W] normalised pressure, >= 0.
   torch::Tensor forward(const torch::Tensor& x, const torch::Tensor& source,
                         const torch::Tensor& target);
+  // The same before the output ReLU ([N, T, H, W], any sign): training uses
+  // it so that cells whose truth is > 0 keep a gradient even where the
+  // output is clamped at 0 (a plain ReLU output dies on sparse maps).
+  torch::Tensor forward_raw(const torch::Tensor& x, const torch::Tensor& source,
+                            const torch::Tensor& target);
 
   const ModelConfig& config() const { return config_; }
 

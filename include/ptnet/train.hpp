@@ -172,7 +172,7 @@ struct TrainOptions {
   int lr_halve_every = 20;          // epochs between halvings of the learning rate
   int patience = 50;                // early stop after this many epochs without val improvement
   std::uint64_t seed = 1;           // weights, sampling and split
-  int threads = 1;                  // torch::set_num_threads (1 measured fastest, see bench)
+  int threads = 2;                  // torch::set_num_threads (measured: bench/bench_model.cpp)
   std::string device = "cpu";       // cpu | cuda
   int stride = 1;                   // frames between window starts
   std::int64_t samples_per_epoch = 0;  // training windows drawn per epoch (0 = all)
@@ -186,9 +186,10 @@ struct TrainOptions {
   bool quiet = false;               // no progress on stderr
 
   // "paper": batch 1028, lr 0.01 halved every 20 epochs, 500 epochs,
-  // patience 50, widths 64/128/256, stride 1, every window.
-  // "fast": widths 16/32/64, batch 64, lr 2e-3 halved every 10 epochs,
-  // 20 epochs of 4096 windows at stride 2, 1024 validation windows.
+  // patience 50, widths 64/128/256, stride 1, every window, 2 threads.
+  // "fast": widths 16/32/64, batch 64, lr 2e-3 halved every 5 epochs,
+  // 15 epochs of 4096 windows at stride 2, 1024 validation windows, 1 thread
+  // (~7 min on the embedded dataset on one core of this machine).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
 };
 

@@ -70,6 +70,11 @@ PressureTransferNetImpl::PressureTransferNetImpl(const ModelConfig& config)
 
 torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const torch::Tensor& source,
                                                const torch::Tensor& target) {
+  return torch::relu(forward_raw(x, source, target));  // [N,T,H,W] >= 0
+}
+
+torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const torch::Tensor& source,
+                                                   const torch::Tensor& target) {
   const auto& c = config_;
   TORCH_CHECK(x.dim() == 4 && x.size(1) == c.window && x.size(2) == c.rows && x.size(3) == c.cols,
               "PressureTransferNet: expected input [N, ", c.window, ", ", c.rows, ", ", c.cols,
@@ -101,7 +106,7 @@ torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const tor
   d = torch::relu(dbn2(deconv2(d)));                                 // [N,C1,H1,W1]
   d = torch::max_unpool2d(d, i1, {s0[0], s0[1]});            // [N,C1,H,W]
   if (c.arch == Arch::skip) d = torch::cat({d, e1}, 1);
-  return torch::relu(deconv1(d));                                    // [N,T,H,W] >= 0
+  return deconv1(d);                                                 // [N,T,H,W] pre-activation
 }
 
 std::int64_t parameter_count(const torch::nn::Module& module) {
