@@ -1,0 +1,86 @@
+// simulate(): placement, depth, contact, load and sensor, frame by frame.
+#include <cmath>
+
+#include "ptnet/error.hpp"
+#include "sim_internal.hpp"
+
+namespace ptnet {
+
+Placement parse_placement(const std::string& text) {
+  if (text == "fixed") return Placement::fixed;
+  if (text == "follow") return Placement::follow;
+  throw Error("placement '" + text + "' is not fixed or follow");
+}
+
+const char* placement_name(Placement placement) {
+  return placement == Placement::follow ? "follow" : "fixed";
+}
+
+SensorModel ideal_sensor() {
+  SensorModel s;
+  s.crosstalk = 0;
+  s.saturation_kpa = 1e9;
+  s.noise_sd_kpa = 0;
+  s.threshold_kpa = 0;
+  s.quantum_kpa = 0;
+  return s;
+}
+
+namespace {
+
+void check_options(const SimOptions& o) {
+  if (o.mat.rows < 1 || o.mat.cols < 1 || !(o.mat.pitch_m > 0))
+    throw Error("simulate: mat must have rows, cols >= 1 and pitch_m > 0");
+  if (o.subsamples < 1 || o.subsamples > 16) throw Error("simulate: subsamples must be 1-16");
+  if (!(o.compliance_m > 0)) throw Error("simulate: compliance_m must be > 0");
+  const auto& s = o.sensor;
+  if (!(s.crosstalk >= 0 && s.crosstalk < 0.25)) throw Error("simulate: crosstalk must be in [0, 0.25)");
+  if (!(s.saturation_kpa > 0) || !(s.noise_sd_kpa >= 0) || !(s.threshold_kpa >= 0) || !(s.quantum_kpa >= 0))
+    throw Error("simulate: sensor saturation must be > 0; noise, threshold, quantum >= 0");
+}
+
+}  // namespace
+
+PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options) {
+  check_options(options);
+  if (motion.size() == 0) throw Error("simulate: motion '" + motion.name + "' has no frames");
+  const int T = motion.size();
+  const MatSpec& mat = options.mat;
+  PressureSequence seq(mat, T, motion.fps);
+
+  const detail::MatPlacement place = detail::place_on_mat(motion, options);
+  const std::vector<double> load = vertical_load(motion, body, options.com_filter_hz);
+  detail::Rasteriser raster(mat, options.subsamples, options.compliance_m);
+  std::vector<float> scratch(mat.cells());
+  std::uint64_t rng = options.seed ^ 0x5bd1e9955bd1e995ULL;
+  const double cell_area = mat.cell_area_m2();
+
+  Pose local;
+  for (int t = 0; t < T; ++t) {
+    const Pose& pose = motion.frames[t];
+    const Eigen::Vector2d& c = place.centre[t];
+    for (int j = 0; j < kJointCount; ++j) {
+      const Eigen::Vector2d d = pose[j].head<2>() - c;
+      local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z());
+    }
+    float* frame = seq.frame(t);
+    const double total = raster.penetration(body, pose_body(body, local), frame);
+    // Elastic foundation: pressure proportional to penetration, scaled so that
+    // all contact together carries F (kPa per metre of mean penetration).
+    const double scale = total > 0 ? load[t] / (total * cell_area) / 1000.0 : 0.0;
+    for (int i = 0; i < mat.cells(); ++i) frame[i] = float(frame[i] * scale);
+    detail::apply_sensor(options.sensor, mat, frame, scratch.data(), rng);
+  }
+  return seq;
+}
+
+std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char ch : name) h = (h ^ ch) * 0x100000001b3ULL;
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * (h | 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace ptnet
