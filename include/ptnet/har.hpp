@@ -284,6 +284,38 @@ HarResult validate_har(const Dataset& real, const TransferFn& transfer, const Ha
 std::string format_table(const HarResult& result);
 std::string to_json(const HarResult& result);  // pretty-printed JSON text
 
+// ---------------------------------------------------------------- stand-in
+
+// The stand-in for real recordings (no real pressure-mat data is available
+// to this project; docs/har.md): five subjects s1..s5, each a distinct body
+// (sex alternating, performer's own height, weight from a seeded BMI)
+// performing its own procedural motions (performers 11..15, never used for
+// training data) in every category, simulated with a sensor profile unlike
+// the training data's: twice the crosstalk, three times the noise, a fixed
+// per-cell gain spread (log-normal) and dead cells.
+struct StandinOptions {
+  int subjects = 5;               // s1..sN
+  int first_performer = 11;       // procedural performer of s1 (s2 = +1, ...)
+  double seconds = 20;            // per category clip
+  int takes = 1;                  // clips per category and subject
+  double crosstalk = 0.08;        // per neighbour (training default 0.04)
+  double noise_sd_kpa = 0.6;      // (training default 0.2)
+  double gain_sd = 0.15;          // sigma of the per-cell log-normal gain
+  double dead_fraction = 0.01;    // cells that always read 0
+  std::uint64_t seed = 1;
+  int threads = 0;                // simulation threads (0: all cores)
+  std::function<void(const std::string&)> progress;
+};
+
+// Writes the stand-in dataset to `path` (atomically; refuses to overwrite
+// without force). Bodies have role "original"; sequences carry performer,
+// category and take; the root config attribute says "stand-in".
+void write_standin(const std::string& path, const StandinOptions& options, bool force);
+
+// The per-cell gain map and dead cells of the stand-in sensor: [H, W] gains
+// (0 = dead), deterministic in the seed.
+std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& options);
+
 // Confusion matrices side by side, one per training source, rows normalised
 // (white = 0, dark blue = 1), with class indices; written atomically.
 void write_confusion_png(const std::string& path, const HarResult& result, bool force);
