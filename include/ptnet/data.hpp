@@ -89,4 +89,16 @@ class Dataset {
   std::unique_ptr<Impl> impl_;
 };
 
+// A synthetic walk for tests, benchmarks and figures (not the simulator):
+// a walker crossing the mat from the near end (last row) towards row 0,
+// left foot on the left columns, heel-to-toe roll-over blobs whose size
+// scales with height and whose load scales with weight. kPa, [frames, rows, cols].
+PressureSequence synthetic_walk(const MatSpec& mat, int frames, double fps, double height_cm,
+                                double weight_kg, unsigned long long seed);
+
+// What `ptnet info FILE` prints for a dataset: mat, fps, bodies (table),
+// sequences, frames, per-category and per-take counts, file size and
+// compression ratio; with json, the same plus every sequence as JSON.
+std::string describe_dataset(const Dataset& dataset, bool json);
+
 }  // namespace ptnet

@@ -23,9 +23,11 @@
 //    (1 when both are empty).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "ptnet/body_spec.hpp"
 #include "ptnet/pressure.hpp"
 
 namespace ptnet {
@@ -89,5 +91,39 @@ struct GroupSummary {
   SequenceMetrics mean;
 };
 std::vector<GroupSummary> summarise(const std::vector<EvalRow>& rows);
+
+}  // namespace ptnet
+
+// ------------------------------------------------------------ the protocol
+
+namespace ptnet {
+class Dataset;
+
+// The model under test: source sequence and attributes -> sequence for target.
+using TransferFn = std::function<PressureSequence(
+    const PressureSequence& source, const BodySpec& source_body, const BodySpec& target_body)>;
+
+struct EvaluateOptions {
+  MetricOptions metrics;
+  // Called after each pair with (pairs done, pairs total).
+  std::function<void(int, int)> progress;
+};
+
+// One test pair: the same motion on two different `original` bodies.
+struct TestPair {
+  std::string motion_id, category;
+  int take = 1;
+  std::string source_sequence, target_sequence;
+};
+
+// All ordered pairs of two different original bodies on the same motion, in
+// a deterministic order (by motion, then source, then target).
+std::vector<TestPair> test_pairs(const Dataset& dataset);
+
+// Evaluates every test pair with the model and the two baselines: three
+// EvalRows per pair (methods "model", "copy", "weight_ratio"). Throws Error if
+// the dataset has no test pairs (it needs >= 2 original bodies).
+std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& model,
+                                    const EvaluateOptions& options);
 
 }  // namespace ptnet

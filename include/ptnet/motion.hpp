@@ -60,9 +60,10 @@ void write_bvh(const Bvh& bvh, const std::string& path, bool force);
 
 // ------------------------------------------------------- units and up axis
 
-enum class Units { automatic, m, cm, mm, in };
+// cmu: the CMU "cgspeed" BVH unit, 1/0.45 inch = 0.05644 m.
+enum class Units { automatic, m, cm, mm, in, cmu };
 enum class UpAxis { y, z };
-Units parse_units(const std::string& text);  // "auto|m|cm|mm|in"
+Units parse_units(const std::string& text);  // "auto|m|cm|mm|in|cmu"
 UpAxis parse_up_axis(const std::string& text);  // "y|z"
 const char* units_name(Units units);
 
@@ -122,7 +123,9 @@ bool is_tpose(const Bvh& bvh, int frame, const std::array<int, kJointCount>& map
 // by quaternion slerp (Euler angles rewritten in the joint's channel order).
 Bvh resample(const Bvh& bvh, double fps);
 
-// Reads, maps, drops a leading T-pose, resamples, and runs FK.
+// Reads, maps, drops a leading T-pose, resamples, and runs FK; then grounds:
+// shifts z so that the floor (lower quartile over frames of the lowest foot
+// point, lowest_foot_z) is at z = 0. Name: the file stem.
 Motion motion_from_bvh(const Bvh& bvh, const MotionOptions& options);
 Motion load_motion(const std::string& path, const MotionOptions& options);
 

@@ -1,0 +1,125 @@
+// ptnet info FILE: what a motion file holds.
+//
+//   ptnet info walk.bvh            # joints, frames, fps, units, height, mapping
+//   ptnet info walk.bvh --json     # the same, machine-readable
+//
+// One describe function per file type; main dispatch in describe().
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "command.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/motion.hpp"
+
+namespace ptnet::cli {
+namespace {
+
+struct InfoOptions {
+  std::string file;
+  bool json = false;
+  std::string units = "auto";
+  std::string up = "y";
+  bool keep_tpose = false;
+};
+
+// The unit metres_per_unit() chose (auto) or was given.
+Units units_of(const Bvh& bvh, Units asked, UpAxis up) {
+  if (asked != Units::automatic) return asked;
+  const double m = metres_per_unit(bvh, Units::automatic, up);
+  for (Units u : {Units::m, Units::cm, Units::mm, Units::in, Units::cmu})
+    if (metres_per_unit(bvh, u, up) == m) return u;
+  return Units::automatic;
+}
+
+nlohmann::ordered_json describe_bvh(const InfoOptions& o) {
+  const Bvh bvh = read_bvh(o.file);
+  MotionOptions mo;
+  mo.units = parse_units(o.units);
+  mo.up = parse_up_axis(o.up);
+  mo.keep_tpose = o.keep_tpose;
+  const Units units = units_of(bvh, mo.units, mo.up);
+  const double scale = metres_per_unit(bvh, mo.units, mo.up);
+  const auto map = map_canonical(bvh);
+  const bool tpose = bvh.frames() > 1 && is_tpose(bvh, 0, map, scale, mo.up);
+  const Motion motion = motion_from_bvh(bvh, mo);
+  const int kept = bvh.frames() - ((tpose && !o.keep_tpose) ? 1 : 0);
+
+  nlohmann::ordered_json j;
+  j["file"] = o.file;
+  j["format"] = "bvh";
+  j["joints"] = bvh.joints.size();
+  j["channels"] = bvh.channel_count;
+  j["frames"] = bvh.frames();
+  j["fps"] = bvh.fps();
+  j["duration_s"] = kept * bvh.frame_time;
+  j["units"] = units_name(units);
+  j["metres_per_unit"] = scale;
+  j["up"] = o.up;
+  j["tpose_frame0"] = tpose;
+  j["tpose_dropped"] = tpose && !o.keep_tpose;
+  j["standing_height_m"] = standing_height(motion);
+  nlohmann::ordered_json canonical;
+  for (int k = 0; k < kJointCount; ++k) canonical[joint_name(k)] = bvh.joints[std::size_t(map[std::size_t(k)])].name;
+  j["canonical"] = canonical;
+  nlohmann::json names = nlohmann::json::array();
+  for (const BvhJoint& b : bvh.joints) names.push_back(b.name);
+  j["joint_names"] = names;
+  return j;
+}
+
+nlohmann::ordered_json describe(const InfoOptions& o) {
+  std::string ext = std::filesystem::path(o.file).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".bvh") return describe_bvh(o);
+  // New file types: one branch here, one describe_<type>() above.
+  throw Error::in(o.file, "unsupported file type '" + (ext.empty() ? std::string("(none)") : ext) +
+                              "' (ptnet info reads .bvh)");
+}
+
+void print_text(const nlohmann::ordered_json& j) {
+  std::ostringstream s;
+  s << std::fixed;
+  s << j["file"].get<std::string>() << ": BVH\n";
+  s << "  joints            " << j["joints"].get<int>() << " (" << j["channels"].get<int>() << " channels)\n";
+  s << "  frames            " << j["frames"].get<int>();
+  if (j["tpose_frame0"].get<bool>())
+    s << (j["tpose_dropped"].get<bool>() ? " (frame 0 is a T-pose, dropped)" : " (frame 0 is a T-pose, kept)");
+  s << "\n";
+  s << "  fps               " << std::setprecision(3) << j["fps"].get<double>() << "\n";
+  s << "  duration          " << std::setprecision(2) << j["duration_s"].get<double>() << " s\n";
+  s << "  units             " << j["units"].get<std::string>() << " (" << std::setprecision(5)
+    << j["metres_per_unit"].get<double>() << " m per unit), up " << j["up"].get<std::string>() << "\n";
+  s << "  standing height   " << std::setprecision(3) << j["standing_height_m"].get<double>() << " m\n";
+  s << "  canonical joints\n";
+  for (const auto& [k, v] : j["canonical"].items())
+    s << "    " << std::left << std::setw(16) << k << v.get<std::string>() << "\n";
+  std::cout << s.str();
+}
+
+void setup(CLI::App& app) {
+  auto opt = std::make_shared<InfoOptions>();
+  CLI::App* cmd = app.add_subcommand("info", "Print what a motion file holds (BVH: joints, frames, fps, units, "
+                                             "standing height, canonical joint mapping)");
+  cmd->add_option("file", opt->file, "Motion file (.bvh)")->required();
+  cmd->add_flag("--json", opt->json, "Machine-readable JSON on stdout");
+  cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu")->capture_default_str()
+      ->check(CLI::IsMember({"auto", "m", "cm", "mm", "in", "cmu"}));
+  cmd->add_option("--up", opt->up, "Up axis of the file: y|z")->capture_default_str()->check(CLI::IsMember({"y", "z"}));
+  cmd->add_flag("--keep-tpose", opt->keep_tpose, "Keep a leading T-pose frame (dropped by default)");
+  cmd->callback([opt]() {
+    const nlohmann::ordered_json j = describe(*opt);
+    if (opt->json)
+      std::cout << j.dump(2) << "\n";
+    else
+      print_text(j);
+  });
+}
+
+PTNET_COMMAND(20, setup);
+
+}  // namespace
+}  // namespace ptnet::cli

@@ -1,0 +1,121 @@
+#include "data/h5_util.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "ptnet/error.hpp"
+
+namespace ptnet::h5 {
+
+void quiet() {
+  static const bool done = [] {
+    H5::Exception::dontPrint();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)done;
+}
+
+namespace {
+herr_t collect_error(unsigned n, const H5E_error2_t* err, void* data) {
+  auto* out = static_cast<std::vector<std::string>*>(data);
+  if (err && err->desc && *err->desc) out->push_back(err->desc);
+  return 0;
+}
+}  // namespace
+
+std::string error_stack_text() {
+  std::vector<std::string> descs;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_error, &descs);
+  std::string text;
+  // Innermost (most specific) first.
+  for (auto it = descs.rbegin(); it != descs.rend(); ++it) {
+    if (!text.empty()) text += "; ";
+    text += *it;
+    if (text.size() > 200) break;
+  }
+  return text;
+}
+
+H5::Group create_group(const H5::H5Location& parent, const std::string& name) {
+  hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
+  H5Pset_obj_track_times(gcpl, false);
+  hid_t id = H5Gcreate2(parent.getId(), name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  H5Pclose(gcpl);
+  if (id < 0) throw H5::GroupIException("create_group", "H5Gcreate2 failed for " + name);
+  H5Gclose(id);
+  return parent.openGroup(name);
+}
+
+static H5::StrType utf8_vlen() {
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  type.setCset(H5T_CSET_UTF8);
+  return type;
+}
+
+void write_attr(const H5::H5Object& obj, const std::string& name, const std::string& value) {
+  H5::StrType type = utf8_vlen();
+  H5::Attribute a = obj.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
+  a.write(type, value);
+}
+
+void write_attr(const H5::H5Object& obj, const std::string& name, int value) {
+  H5::Attribute a = obj.createAttribute(name, H5::PredType::STD_I32LE, H5::DataSpace(H5S_SCALAR));
+  a.write(H5::PredType::NATIVE_INT, &value);
+}
+
+void write_attr(const H5::H5Object& obj, const std::string& name, double value) {
+  H5::Attribute a = obj.createAttribute(name, H5::PredType::IEEE_F64LE, H5::DataSpace(H5S_SCALAR));
+  a.write(H5::PredType::NATIVE_DOUBLE, &value);
+}
+
+bool has_attr(const H5::H5Object& obj, const std::string& name) {
+  return obj.attrExists(name);
+}
+
+static H5::Attribute open_scalar_attr(const H5::H5Object& obj, const std::string& name,
+                                      const std::string& file, const std::string& where) {
+  if (!obj.attrExists(name))
+    throw Error::in(file, where + ": missing attribute '" + name + "'");
+  H5::Attribute a = obj.openAttribute(name);
+  if (a.getSpace().getSimpleExtentNpoints() != 1)
+    throw Error::in(file, where + ": attribute '" + name + "' is not a single value");
+  return a;
+}
+
+std::string read_string_attr(const H5::H5Object& obj, const std::string& name,
+                             const std::string& file, const std::string& where) {
+  H5::Attribute a = open_scalar_attr(obj, name, file, where);
+  if (a.getTypeClass() != H5T_STRING)
+    throw Error::in(file, where + ": attribute '" + name + "' is not a string");
+  H5::StrType type = a.getStrType();
+  std::string value;
+  a.read(type, value);
+  while (!value.empty() && value.back() == '\0') value.pop_back();  // fixed-length padding
+  return value;
+}
+
+double read_number_attr(const H5::H5Object& obj, const std::string& name,
+                        const std::string& file, const std::string& where) {
+  H5::Attribute a = open_scalar_attr(obj, name, file, where);
+  H5T_class_t cls = a.getTypeClass();
+  if (cls != H5T_INTEGER && cls != H5T_FLOAT)
+    throw Error::in(file, where + ": attribute '" + name + "' is not a number");
+  double value = 0;
+  a.read(H5::PredType::NATIVE_DOUBLE, &value);
+  if (!std::isfinite(value))
+    throw Error::in(file, where + ": attribute '" + name + "' is not finite");
+  return value;
+}
+
+long read_integer_attr(const H5::H5Object& obj, const std::string& name,
+                       const std::string& file, const std::string& where) {
+  H5::Attribute a = open_scalar_attr(obj, name, file, where);
+  if (a.getTypeClass() != H5T_INTEGER)
+    throw Error::in(file, where + ": attribute '" + name + "' is not an integer");
+  long long value = 0;
+  a.read(H5::PredType::NATIVE_LLONG, &value);
+  return long(value);
+}
+
+}  // namespace ptnet::h5

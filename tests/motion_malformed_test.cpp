@@ -1,0 +1,98 @@
+// Every malformed BVH fixture (tests/data/malformed) is rejected with its
+// own one-line error naming the file, the line, what was expected and what
+// was found.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "ptnet/error.hpp"
+#include "ptnet/motion.hpp"
+
+namespace {
+
+const std::string kDir = std::string(PTNET_TEST_DATA) + "/malformed/";
+
+struct Case {
+  const char* file;
+  const char* message;  // after "<path>:"
+};
+
+const Case kCases[] = {
+    {"empty.bvh", "1: expected HIERARCHY, found an empty file"},
+    {"no_hierarchy.bvh", "1: expected HIERARCHY, found ROOT"},
+    {"truncated_hierarchy.bvh", "10: expected JOINT, End Site or }, found end of file"},
+    {"extra_closing_brace.bvh", "16: expected MOTION, found }"},
+    {"missing_closing_brace.bvh", "15: expected JOINT, End Site or }, found MOTION"},
+    {"unknown_channel.bvh", "9: expected a channel name (X|Y|Z + position|rotation), found Xrot"},
+    {"bad_channel_count.bvh", "9: expected a channel count of 0, 3 or 6, found 4"},
+    {"too_few_channel_names.bvh", "10: expected a channel name (X|Y|Z + position|rotation), found End"},
+    {"short_frame_line.bvh", "20: expected 9 values, found 8"},
+    {"crlf_short_frame_line.bvh", "20: expected 9 values, found 8"},
+    {"long_frame_line.bvh", "19: expected 9 values, found 10"},
+    {"non_numeric_value.bvh", "19: expected a number, found abc"},
+    {"nan_value.bvh", "20: expected a finite number, found nan"},
+    {"inf_value.bvh", "19: expected a finite number, found -inf"},
+    {"frames_more_than_lines.bvh", "21: expected 3 frame lines (Frames: 3), found 2"},
+    {"frames_fewer_than_lines.bvh", "20: expected 1 frame line (Frames: 1), found more"},
+    {"zero_frame_time.bvh", "18: expected a positive Frame Time (s), found 0"},
+    {"negative_frame_time.bvh", "18: expected a positive Frame Time (s), found -0.033333"},
+    {"missing_motion.bvh", "16: expected MOTION, found end of file"},
+    {"missing_offset.bvh", "8: expected OFFSET, found CHANNELS"},
+    {"bad_offset_number.bvh", "8: expected a number (OFFSET), found 1O"},
+    {"duplicate_joint_name.bvh", "6: expected a joint name not used before, found Hips again"},
+    {"zero_frames.bvh", "17: expected a frame count of at least 1, found 0"},
+    {"missing_frame_time.bvh", "18: expected Frame Time:, found 0"},
+};
+
+}  // namespace
+
+TEST(MotionMalformed, EachFixtureHasItsOwnMessage) {
+  std::set<std::string> messages;
+  for (const Case& c : kCases) {
+    const std::string path = kDir + c.file;
+    try {
+      ptnet::read_bvh(path);
+      ADD_FAILURE() << c.file << " was accepted";
+    } catch (const ptnet::Error& e) {
+      EXPECT_EQ(std::string(e.what()), path + ":" + c.message);
+      messages.insert(std::string(e.what()).substr(path.size()));
+    }
+  }
+  EXPECT_GE(messages.size(), 20u);  // distinct problems, distinct messages
+}
+
+TEST(MotionMalformed, EveryFixtureIsListed) {
+  std::set<std::string> listed;
+  for (const Case& c : kCases) listed.insert(c.file);
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(kDir)) {
+    ++files;
+    EXPECT_TRUE(listed.count(e.path().filename().string())) << e.path() << " has no expected message";
+  }
+  EXPECT_EQ(files, listed.size());
+  EXPECT_GE(files, 12u);
+}
+
+TEST(MotionMalformed, ParseErrorsFromMemoryNameTheSource) {
+  try {
+    ptnet::parse_bvh("", "memory.bvh");
+    FAIL();
+  } catch (const ptnet::Error& e) {
+    EXPECT_STREQ(e.what(), "memory.bvh:1: expected HIERARCHY, found end of file");
+  }
+  // Deep nesting is an error, not a stack overflow.
+  std::string deep = "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n";
+  for (int i = 1; i < 5000; ++i) deep += "JOINT J" + std::to_string(i) + "\n{\nOFFSET 0 0 0\n";
+  EXPECT_THROW(ptnet::parse_bvh(deep, "deep.bvh"), ptnet::Error);
+  // A huge Frames: claim does not allocate for it.
+  std::string huge = "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
+                     "MOTION\nFrames: 4000000000000\nFrame Time: 0.1\n1 2 3\n";
+  try {
+    ptnet::parse_bvh(huge, "huge.bvh");
+    FAIL();
+  } catch (const ptnet::Error& e) {
+    EXPECT_STREQ(e.what(), "huge.bvh:12: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
+  }
+}
