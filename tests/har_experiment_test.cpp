@@ -7,6 +7,7 @@
 #ifdef PTNET_HAR_EXPERIMENT
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "ptnet/data.hpp"
@@ -45,9 +46,10 @@ PressureSequence make(const std::string& category, int subject, std::uint64_t se
   return s;
 }
 
-std::string write_dataset() {
+// One file per test (CTest runs tests in parallel).
+std::string write_dataset(const std::string& name) {
   const std::string path =
-      (std::filesystem::temp_directory_path() / "ptnet_har_experiment_test.h5").string();
+      (std::filesystem::temp_directory_path() / ("ptnet_har_" + name + ".h5")).string();
   DatasetInfo info;
   info.mat = MatSpec{20, 12, 0.02};
   info.generator = "har_experiment_test";
@@ -94,7 +96,7 @@ HarOptions small_options() {
 }  // namespace
 
 TEST(HarExperiment, TwoActivitiesAreFoundAndLearnedFromEverySource) {
-  const Dataset d = Dataset::open(write_dataset());
+  const Dataset d = Dataset::open(write_dataset("two_activities"));
   const HarResult r = validate_har(d, scale_by_weight, small_options());
   EXPECT_EQ(r.train_subjects, (std::vector<std::string>{"s1", "s2"}));
   EXPECT_EQ(r.test_subjects, (std::vector<std::string>{"s3", "s4"}));
@@ -114,10 +116,20 @@ TEST(HarExperiment, TwoActivitiesAreFoundAndLearnedFromEverySource) {
   }
   EXPECT_NE(format_table(r).find("Macro F1 score (pseudo labels)"), std::string::npos);
   EXPECT_NE(to_json(r).find("\"real+synthetic\""), std::string::npos);
+
+  // The figure: a PNG, refused without force once it exists.
+  const std::string png =
+      (std::filesystem::temp_directory_path() / "ptnet_har_two_activities.png").string();
+  write_confusion_png(png, r, /*force=*/true);
+  std::ifstream f(png, std::ios::binary);
+  char magic[8] = {};
+  f.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  EXPECT_THROW(write_confusion_png(png, r, /*force=*/false), Error);
 }
 
 TEST(HarExperiment, BadSubjectListsAreOneLineErrors) {
-  const std::string path = write_dataset();
+  const std::string path = write_dataset("bad_subjects");
   const Dataset d = Dataset::open(path);
   HarOptions o = small_options();
   o.test_subjects = {"2", "3"};

@@ -5,6 +5,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <map>
 
@@ -24,18 +25,18 @@ struct Rgb {
 };
 constexpr Rgb kWhite{255, 255, 255}, kInk{30, 30, 30}, kFull{8, 48, 107}, kGrid{200, 200, 200};
 
-// 3 x 5 glyphs, one string of 15 '#'/'.' per character, row by row.
+// 3 x 5 glyphs (upper case), one string of 15 '#'/'.' per character, row by row.
 const std::map<char, const char*>& font() {
   static const std::map<char, const char*> f = {
       {'0', "####.##.##.####"}, {'1', ".#.##..#..#.###"}, {'2', "###..#####..###"},
-      {'3', "###..###..#####"}, {'4', "#.##.####..#..#"}, {'5', "####..###..####"},
-      {'6', "####..####.####"}, {'7', "###..#..#..#..#"}, {'8', "####.#####.####"},
-      {'9', "####.####..####"}, {'+', "....#.###.#...."}, {'a', "....###.####.##"},
-      {'c', "....####..#..##"}, {'d', "..#..####.#.###"}, {'e', "###.#.####..###"},
-      {'g', "###.#.####..###"}, {'h', "#..#..####.##.#"}, {'i', ".#.....#..#..#."},
-      {'l', "#..#..#..#..###"}, {'n', "......####.##.#"}, {'o', "....####.#.####"},
-      {'p', "...####.####..."}, {'r', "......####..#.."}, {'s', "....#####.####."},
-      {'t', ".#.###.#..#..##"}, {'u', "......#.##.####"}, {'y', "...#.####..####"},
+      {'3', "###..#.##..####"}, {'4', "#.##.####..#..#"}, {'5', "####..###..####"},
+      {'6', "####..####.####"}, {'7', "###..#.#..#..#."}, {'8', "####.#####.####"},
+      {'9', "####.####..####"}, {'+', "....#.###.#...."}, {'A', ".#.#.#####.##.#"},
+      {'C', ".###..#..#...##"}, {'D', "##.#.##.##.###."}, {'E', "####..##.#..###"},
+      {'G', ".###..#.##.#.##"}, {'H', "#.##.#####.##.#"}, {'I', "###.#..#..#.###"},
+      {'L', "#..#..#..#..###"}, {'N', "##.#.##.##.##.#"}, {'O', ".#.#.##.##.#.#."},
+      {'P', "##.#.###.#..#.."}, {'R', "##.#.###.#.##.#"}, {'S', ".###...#...###."},
+      {'T', "###.#..#..#..#."}, {'U', "#.##.##.##.####"}, {'Y', "#.##.#.#..#..#."},
       {' ', "..............."}};
   return f;
 }
@@ -56,7 +57,7 @@ class Canvas {
   }
   void text(int x, int y, const std::string& s, Rgb c) {
     for (char ch : s) {
-      auto it = font().find(ch);
+      auto it = font().find(char(std::toupper((unsigned char)ch)));
       if (it != font().end())
         for (int i = 0; i < 15; ++i)
           if (it->second[i] == '#') fill(x + (i % 3) * kScale, y + (i / 3) * kScale, kScale, kScale, c);
@@ -121,7 +122,9 @@ void write_confusion_png(const std::string& path, const HarResult& r, bool force
   const int n = std::max(1, r.clusters);
   const int cell = std::clamp(240 / n, 8, 32);
   const int cat_n = std::max(1, int(r.categories.size()));
-  const int panel_w = kLabelPx + std::max(n * cell, 15 * 4 * kScale) + kMargin;
+  std::size_t title = 0;
+  for (const auto& s : r.sources) title = std::max(title, s.source.size() + (categories ? 9 : 0));
+  const int panel_w = kLabelPx + std::max(n * cell, int(title) * 4 * kScale) + kMargin;
   const int panel_h = 8 * kScale + kLabelPx + n * cell + kMargin;
   const int cat_h = 8 * kScale + kLabelPx + cat_n * cell + kMargin;
   const int width = kMargin + int(r.sources.size()) * panel_w;

@@ -25,6 +25,9 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
+// (the body stage's sex_name() is not needed for this one word)
+const char* sex_word(Sex s) { return s == Sex::male ? "male" : "female"; }
+
 nlohmann::json matrix(const Eigen::MatrixXi& m) {
   nlohmann::json rows = nlohmann::json::array();
   for (int i = 0; i < m.rows(); ++i) {
@@ -48,7 +51,7 @@ std::string format_table(const HarResult& r) {
   o << "Synthetic: " << r.synthetic_bodies.size() << " bodies (";
   for (std::size_t i = 0; i < r.synthetic_bodies.size(); ++i) {
     const BodySpec& b = r.synthetic_bodies[i];
-    o << (i ? "; " : "") << b.id << " " << sex_name(b.sex) << " " << fixed(b.height_cm, 1) << " cm "
+    o << (i ? "; " : "") << b.id << " " << sex_word(b.sex) << " " << fixed(b.height_cm, 1) << " cm "
       << fixed(b.weight_kg, 1) << " kg";
   }
   o << ")\n\n";
@@ -111,7 +114,7 @@ std::string to_json(const HarResult& r) {
                      {"cluster_sizes", r.cluster_sizes}};
   json bodies = json::array();
   for (const auto& b : r.synthetic_bodies)
-    bodies.push_back({{"id", b.id}, {"sex", sex_name(b.sex)}, {"height_cm", b.height_cm},
+    bodies.push_back({{"id", b.id}, {"sex", sex_word(b.sex)}, {"height_cm", b.height_cm},
                       {"weight_kg", b.weight_kg}});
   j["synthetic_bodies"] = bodies;
   if (!r.categories.empty()) {
