@@ -20,7 +20,7 @@ struct ValidateHarOptions {
   std::string train_subjects = "1,2,3", test_subjects = "4,5";
   int runs = 10;
   int stride = 5;
-  int synthetic_bodies = 4;
+  int synthetic_bodies = ptnet::har::HarOptions{}.synthetic_bodies;
   int transfer_stride = 15;
   int pca = 4;
   int epochs = ptnet::har::ClassifierOptions{}.epochs;

@@ -41,6 +41,7 @@ TEST(HarClassifier, LearnsLeftBlobVersusRightBlob) {
   std::vector<int> train_labels, test_labels;
   InputOptions in;
   in.time_blocks = 2;
+  in.pool = 2;
   const PreparedWindows train = prepare_windows(blobs(240, 1, train_labels), in);
   const PreparedWindows test = prepare_windows(blobs(100, 2, test_labels), in);
   ASSERT_EQ(train.channels, 2);
