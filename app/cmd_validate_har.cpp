@@ -11,6 +11,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/model_config.hpp"
 #include "ptnet/transfer.hpp"
 
 namespace {
@@ -73,11 +74,9 @@ void run(const ValidateHarOptions& o) {
     if (fs::exists(p, ec) && !o.force) throw ptnet::Error::in(p, "exists; pass --force to overwrite");
 
   ptnet::Dataset real = ptnet::Dataset::open(o.real);
-  ptnet::TransferOptions to;
-  to.stride = o.transfer_stride;
-  to.device = o.device;
-  ptnet::Transfer transfer(o.model, to);
-  const ptnet::MatSpec& mm = transfer.model().mat;
+  ptnet::har::check_subjects(real, h);  // before loading anything else
+  const ptnet::ModelDir dir = ptnet::read_model_dir(o.model);
+  const ptnet::MatSpec& mm = dir.mat;
   const ptnet::MatSpec& dm = real.info().mat;
   if (!(mm == dm)) {
     std::ostringstream s;
@@ -85,6 +84,10 @@ void run(const ValidateHarOptions& o) {
       << o.real << "'s " << dm.rows << "x" << dm.cols << " (" << dm.pitch_m << " m)";
     throw ptnet::Error::in((fs::path(o.model) / "config.json").string(), s.str());
   }
+  ptnet::TransferOptions to;
+  to.stride = o.transfer_stride;
+  to.device = o.device;
+  ptnet::Transfer transfer(o.model, to);
   if (!quiet)
     std::cerr << "validate-har: real " << o.real << ", model " << o.model << ", train "
               << o.train_subjects << ", test " << o.test_subjects << ", runs " << o.runs

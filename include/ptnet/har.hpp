@@ -25,6 +25,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ptnet/body_spec.hpp"
@@ -237,6 +238,13 @@ std::vector<BodySpec> sample_paper_bodies(int count, std::uint64_t seed);
 // "s<token>" / "subject<token>". Throws Error listing the dataset's bodies
 // when none matches.
 std::string resolve_subject(const Dataset& data, const std::string& token);
+
+// Resolves and checks the subject lists before any work: both non-empty,
+// every token a body (resolve_subject), no subject twice or in both lists,
+// every subject with a sequence of at least 30 frames. Returns the body ids
+// {train, test}; throws Error naming the dataset otherwise.
+std::pair<std::vector<std::string>, std::vector<std::string>> check_subjects(
+    const Dataset& data, const HarOptions& options);
 
 struct SourceResult {
   std::string source;                 // "real", "synthetic", "real+synthetic"

@@ -10,6 +10,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
@@ -104,32 +105,45 @@ std::string resolve_subject(const Dataset& data, const std::string& token) {
   throw Error::in(data.path(), "no subject '" + token + "' (bodies: " + join(ids) + ")");
 }
 
+std::pair<std::vector<std::string>, std::vector<std::string>> check_subjects(
+    const Dataset& real, const HarOptions& o) {
+  const std::string& path = real.path();
+  if (o.train_subjects.empty()) throw Error::in(path, "no training subjects given");
+  if (o.test_subjects.empty()) throw Error::in(path, "no test subjects given");
+  std::vector<std::string> train, test;
+  for (const auto& s : o.train_subjects) train.push_back(resolve_subject(real, s));
+  for (const auto& s : o.test_subjects) test.push_back(resolve_subject(real, s));
+  std::set<std::string> seen;
+  for (const auto& s : train)
+    if (!seen.insert(s).second) throw Error::in(path, "subject " + s + " listed twice for training");
+  for (const auto& s : test) {
+    if (std::count(train.begin(), train.end(), s))
+      throw Error::in(path, "subject " + s + " is in both the training and the test subjects");
+    if (!seen.insert(s).second) throw Error::in(path, "subject " + s + " listed twice for testing");
+  }
+  for (const auto& s : seen) {
+    bool ok = false;
+    for (const auto& q : real.sequences()) ok = ok || (q.body_id == s && q.frames >= kWindowFrames);
+    if (!ok)
+      throw Error::in(path, "subject " + s + " has no sequence of at least " +
+                                std::to_string(kWindowFrames) + " frames");
+  }
+  return {train, test};
+}
+
 HarResult validate_har(const Dataset& real, const TransferFn& transfer, const HarOptions& o) {
   const auto t_begin = std::chrono::steady_clock::now();
   auto say = [&](const std::string& s) {
     if (o.progress) o.progress(s);
   };
   const std::string& path = real.path();
-  if (o.train_subjects.empty()) throw Error::in(path, "no training subjects given");
-  if (o.test_subjects.empty()) throw Error::in(path, "no test subjects given");
   if (o.runs < 1) throw Error("har: runs must be at least 1, found " + std::to_string(o.runs));
   if (o.stride < 1) throw Error("har: stride must be at least 1, found " + std::to_string(o.stride));
   if (!transfer) throw Error("har: no transfer function given");
 
   HarResult r;
   r.dataset = path;
-  for (const auto& s : o.train_subjects) r.train_subjects.push_back(resolve_subject(real, s));
-  for (const auto& s : o.test_subjects) r.test_subjects.push_back(resolve_subject(real, s));
-  {
-    std::set<std::string> seen;
-    for (const auto& s : r.train_subjects)
-      if (!seen.insert(s).second) throw Error::in(path, "subject " + s + " listed twice for training");
-    for (const auto& s : r.test_subjects) {
-      if (std::count(r.train_subjects.begin(), r.train_subjects.end(), s))
-        throw Error::in(path, "subject " + s + " is in both the training and the test subjects");
-      if (!seen.insert(s).second) throw Error::in(path, "subject " + s + " listed twice for testing");
-    }
-  }
+  std::tie(r.train_subjects, r.test_subjects) = check_subjects(real, o);
   r.runs = o.runs;
   r.stride = o.stride;
 
@@ -142,7 +156,6 @@ HarResult validate_har(const Dataset& real, const TransferFn& transfer, const Ha
     const auto& subjects = pass == 0 ? r.train_subjects : r.test_subjects;
     WindowSet& set = pass == 0 ? train : test;
     for (const std::string& subject : subjects) {
-      const int before = set.count();
       for (int i = 0; i < int(sequences.size()); ++i) {
         if (sequences[i].body_id != subject) continue;
         if (sequences[i].frames < kWindowFrames) continue;
@@ -150,9 +163,6 @@ HarResult validate_har(const Dataset& real, const TransferFn& transfer, const Ha
         add_windows(seq, i, sequences[i].category, o.stride, o.input, fps, set);
         if (pass == 0) train_sequences.push_back(i);
       }
-      if (set.count() == before)
-        throw Error::in(path, "subject " + subject + " has no sequence of at least " +
-                                  std::to_string(kWindowFrames) + " frames");
     }
   }
   r.train_windows = train.count();
