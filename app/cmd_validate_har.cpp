@@ -1,7 +1,7 @@
 // ptnet validate-har: does transferred data help an activity classifier?
 // (paper section 4.2, Table 3; docs/har.md). Thin glue over ptnet/har.hpp
 // and ptnet/transfer.hpp.
-#if defined(PTNET_HAR_EXPERIMENT) && __has_include("ptnet/transfer.hpp")
+#if defined(PTNET_HAR_EXPERIMENT) && defined(PTNET_HAR_TRANSFER)
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -61,7 +61,13 @@ void run(const ValidateHarOptions& o) {
   h.seed = o.seed;
   h.synthetic_bodies = o.synthetic_bodies;
   h.category_labels = !o.no_categories;
-  if (!o.bodies.empty()) h.bodies = ptnet::read_bodies_csv(o.bodies);
+  if (!o.bodies.empty()) {
+#ifdef PTNET_HAR_BODIES  // the body stage implements read_bodies_csv
+    h.bodies = ptnet::read_bodies_csv(o.bodies);
+#else
+    throw ptnet::Error("--bodies: reading a bodies CSV needs the body stage, not built");
+#endif
+  }
   if (!quiet) h.progress = [](const std::string& line) { std::cerr << line << "\n"; };
 
   // Outputs are checked before hours of work, not after.

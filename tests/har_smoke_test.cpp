@@ -2,7 +2,7 @@
 // exit status 1 before any work is done.
 #include <gtest/gtest.h>
 
-#if defined(PTNET_HAR_EXPERIMENT) && __has_include("ptnet/transfer.hpp")
+#if defined(PTNET_HAR_EXPERIMENT) && defined(PTNET_HAR_TRANSFER)
 #include <sys/wait.h>
 
 #include <array>
@@ -18,12 +18,12 @@ using namespace ptnet;
 
 namespace {
 
-struct Run {
+struct Outcome {
   int status;
   std::string err;
 };
 
-Run run(const std::string& args) {
+Outcome run(const std::string& args) {
   const fs::path err = fs::temp_directory_path() / ("ptnet_har_smoke_" + std::to_string(::getpid()));
   const std::string cmd = std::string(PTNET_BINARY) + " " + args + " 2>" + err.string() + " >/dev/null";
   const int rc = std::system(cmd.c_str());
@@ -36,7 +36,9 @@ Run run(const std::string& args) {
 // A 3-subject dataset of 40-frame sequences and a model folder whose
 // config.json says 64 x 32 (no weights are needed to reject it).
 struct Fixture {
-  fs::path dir = fs::temp_directory_path() / "ptnet_har_smoke";
+  fs::path dir = fs::temp_directory_path() /
+                 (std::string("ptnet_har_smoke_") +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::string data, model;
   Fixture() {
     fs::remove_all(dir);
@@ -76,7 +78,7 @@ struct Fixture {
 
 TEST(HarSmoke, OverlappingSubjectsAreAnError) {
   Fixture f;
-  const Run r = run("validate-har --real " + f.data + " --model " + f.model +
+  const Outcome r = run("validate-har --real " + f.data + " --model " + f.model +
                     " --train-subjects 1,2 --test-subjects 2,3 --out " + (f.dir / "har").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err, "ptnet: error: " + f.data +
@@ -85,7 +87,7 @@ TEST(HarSmoke, OverlappingSubjectsAreAnError) {
 
 TEST(HarSmoke, UnknownSubjectsAreAnError) {
   Fixture f;
-  const Run r = run("validate-har --real " + f.data + " --model " + f.model +
+  const Outcome r = run("validate-har --real " + f.data + " --model " + f.model +
                     " --train-subjects 1 --test-subjects 7 --out " + (f.dir / "har").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err, "ptnet: error: " + f.data + ": no subject '7' (bodies: s1,s2,s3)\n");
@@ -93,7 +95,7 @@ TEST(HarSmoke, UnknownSubjectsAreAnError) {
 
 TEST(HarSmoke, ModelOfAnotherMatSizeIsAnError) {
   Fixture f;
-  const Run r = run("validate-har --real " + f.data + " --model " + f.model +
+  const Outcome r = run("validate-har --real " + f.data + " --model " + f.model +
                     " --train-subjects 1,2 --test-subjects 3 --out " + (f.dir / "har").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err, "ptnet: error: " + f.model + "/config.json: model mat 64x32 (0.02 m) differs from " +
