@@ -56,13 +56,19 @@ void BM_ClassifierTrainEpoch(benchmark::State& state) {
   for (int i = 0; i < n; ++i) labels[i] = i % 4;
   ClassifierOptions o;
   o.epochs = 1;
+  o.batch_size = int(state.range(1));
   for (auto _ : state) {
     WindowClassifier net(in.channels, in.rows, in.cols, 4, o);
     net.train(in, labels);
   }
   state.SetItemsProcessed(state.iterations() * n);  // windows trained per second
 }
-BENCHMARK(BM_ClassifierTrainEpoch)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);  // pool
+BENCHMARK(BM_ClassifierTrainEpoch)
+    ->Args({2, 64})
+    ->Args({4, 64})
+    ->Args({4, 128})
+    ->Args({4, 256})
+    ->Unit(benchmark::kMillisecond);  // pool, batch
 
 }  // namespace
 

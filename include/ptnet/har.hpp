@@ -176,7 +176,7 @@ PreparedWindows prepare_windows(const WindowBatch& windows, const InputOptions& 
 
 struct ClassifierOptions {
   int epochs = 10;              // passes over the training set
-  int batch_size = 64;          // windows per Adam step
+  int batch_size = 128;         // windows per Adam step
   double learning_rate = 2e-3;  // Adam
   double weight_decay = 1e-4;   // Adam L2
   int conv1 = 16;               // channels of the first conv block

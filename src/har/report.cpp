@@ -55,7 +55,7 @@ std::string format_table(const HarResult& r) {
       << fixed(b.weight_kg, 1) << " kg";
   }
   o << ")\n\n";
-  const std::size_t w0 = 30, w = 17;
+  const std::size_t w0 = 32, w = 17;
   o << pad("Training dataset source", w0);
   for (const auto& s : r.sources) o << "| " << pad(s.source == "real"        ? "Real"
                                                    : s.source == "synthetic" ? "Synthetic"
