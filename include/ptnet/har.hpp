@@ -325,6 +325,25 @@ void write_standin(const std::string& path, const StandinOptions& options, bool 
 // (0 = dead), deterministic in the seed.
 std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& options);
 
+// ---------------------------------------------------------------- import
+
+// Real recordings into the dataset format (docs/har.md, "Your own
+// recordings"). The manifest is a CSV with the header
+//   subject,sex,height_cm,weight_kg,file[,category]
+// one line per recording; a subject's attributes must agree on all its
+// lines; `file` (relative to the manifest's folder) is a float32 .npy
+// [T, rows, cols] or a .csv with one frame per line (rows x cols values,
+// row-major, kPa). Each subject becomes a body (role "original"), each line
+// a sequence "<file stem>__<subject>" (motion_id = file stem, performer =
+// subject, take 1). Throws Error "FILE:LINE: expected X, found Y" for a bad
+// manifest line.
+struct ImportOptions {
+  MatSpec mat;      // the recordings' mat
+  double fps = 30;  // their frame rate
+};
+void import_recordings(const std::string& manifest, const std::string& out,
+                       const ImportOptions& options, bool force);
+
 // Confusion matrices side by side, one per training source, rows normalised
 // (white = 0, dark blue = 1), with class indices; written atomically.
 void write_confusion_png(const std::string& path, const HarResult& result, bool force);
