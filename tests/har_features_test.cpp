@@ -99,3 +99,23 @@ TEST(HarPca, ConstantColumnIsHarmlessAndBadInputIsAnError) {
     EXPECT_STREQ(e.what(), "pca: expected 2 columns, found 3");
   }
 }
+
+TEST(HarFeatures, BodyScaledFeaturesAreDividedBySubjectMedians) {
+  // Two subjects, the second twice as heavy: after scaling both read 1 at
+  // their median; features that do not scale with the body are untouched.
+  const int nf = int(feature_names().size());
+  const int force = index_of("force_mean_n"), speed = index_of("cop_speed_mean_mps");
+  Eigen::MatrixXd x = Eigen::MatrixXd::Ones(6, nf);
+  const double f[6] = {600, 700, 800, 1200, 1400, 1600};
+  for (int i = 0; i < 6; ++i) {
+    x(i, force) = f[i];
+    x(i, speed) = 0.5 + i;
+  }
+  normalise_per_subject(x, {"a", "a", "a", "b", "b", "b"});
+  EXPECT_NEAR(x(1, force), 1.0, 1e-12);
+  EXPECT_NEAR(x(4, force), 1.0, 1e-12);
+  EXPECT_NEAR(x(0, force), 600.0 / 700.0, 1e-12);
+  EXPECT_NEAR(x(3, force), 1200.0 / 1400.0, 1e-12);
+  EXPECT_EQ(x(5, speed), 5.5);
+  EXPECT_THROW(normalise_per_subject(x, {"a"}), ptnet::Error);
+}

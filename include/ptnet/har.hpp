@@ -73,6 +73,11 @@ std::vector<double> window_feature_vector(const float* window, int frames, const
 // All windows of a batch -> [N, F].
 Eigen::MatrixXd window_features(const WindowBatch& windows, double fps = 30);
 
+// Divides the body-scaled features (force_mean_n, area_*, peak_*) of each
+// window by the median of that feature over its subject's windows, so that
+// clusters follow activities rather than bodies. features [N, F], subject [N].
+void normalise_per_subject(Eigen::MatrixXd& features, const std::vector<std::string>& subject);
+
 // Standardisation (z-score per column; a constant column keeps scale 1) then
 // principal components by Eigen::SelfAdjointEigenSolver on the covariance.
 struct Pca {

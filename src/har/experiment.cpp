@@ -74,7 +74,44 @@ double sd_of(const std::vector<double>& v) {
   return std::sqrt(s / double(v.size() - 1));
 }
 
+// Body id of every window, train windows first: [N].
+std::vector<std::string> window_subjects(const Dataset& real, const WindowSet& train,
+                                         const WindowSet& test) {
+  std::vector<std::string> out;
+  for (const WindowSet* set : {&train, &test})
+    for (int s : set->sequence) out.push_back(real.sequences()[s].body_id);
+  return out;
+}
+
 }  // namespace
+
+// Features that scale with the body (force with weight, contact area and
+// peak pressure with foot size) are divided by the subject's median over
+// its windows, so that clusters follow activities rather than bodies.
+void normalise_per_subject(Eigen::MatrixXd& features, const std::vector<std::string>& subject) {
+  static const std::vector<std::string> scaled = {"force_mean_n",   "area_mean_cells",
+                                                  "area_sd_cells",  "area_min_cells",
+                                                  "area_max_cells", "peak_mean_kpa",
+                                                  "peak_max_kpa"};
+  if (int(subject.size()) != features.rows())
+    throw Error("har: " + std::to_string(subject.size()) + " subjects for " +
+                std::to_string(features.rows()) + " windows");
+  const auto& names = feature_names();
+  std::map<std::string, std::vector<int>> rows;
+  for (int i = 0; i < int(subject.size()); ++i) rows[subject[i]].push_back(i);
+  for (const std::string& name : scaled) {
+    const int j = int(std::find(names.begin(), names.end(), name) - names.begin());
+    if (j >= features.cols()) continue;
+    for (const auto& [who, idx] : rows) {
+      std::vector<double> v;
+      for (int i : idx) v.push_back(features(i, j));
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      const double median = v[v.size() / 2];
+      if (median > 0)
+        for (int i : idx) features(i, j) /= median;
+    }
+  }
+}
 
 std::vector<BodySpec> sample_paper_bodies(int count, std::uint64_t seed) {
   if (count < 1) throw Error("har: need at least one synthetic body, found " + std::to_string(count));
@@ -179,6 +216,7 @@ HarResult validate_har(const Dataset& real, const TransferFn& transfer, const Ha
     const auto& f = i < train.count() ? train.features[i] : test.features[i - train.count()];
     for (int j = 0; j < nf; ++j) features(i, j) = f[j];
   }
+  normalise_per_subject(features, window_subjects(real, train, test));
   const int k = std::clamp(o.pca_components, 1, nf);
   const Pca pca = Pca::fit(features, k);
   const Eigen::MatrixXd z = pca.transform(features);
