@@ -63,7 +63,8 @@ nlohmann::ordered_json describe_bvh(const InfoOptions& o) {
   j["tpose_dropped"] = tpose && !o.keep_tpose;
   j["standing_height_m"] = standing_height(motion);
   nlohmann::ordered_json canonical;
-  for (int k = 0; k < kJointCount; ++k) canonical[joint_name(k)] = bvh.joints[std::size_t(map[std::size_t(k)])].name;
+  for (int k = 0; k < kJointCount; ++k)
+    canonical[joint_name(k)] = bvh.joints[std::size_t(map[std::size_t(k)])].name;
   j["canonical"] = canonical;
   nlohmann::json names = nlohmann::json::array();
   for (const BvhJoint& b : bvh.joints) names.push_back(b.name);
@@ -84,16 +85,20 @@ void print_text(const nlohmann::ordered_json& j) {
   std::ostringstream s;
   s << std::fixed;
   s << j["file"].get<std::string>() << ": BVH\n";
-  s << "  joints            " << j["joints"].get<int>() << " (" << j["channels"].get<int>() << " channels)\n";
+  s << "  joints            " << j["joints"].get<int>() << " (" << j["channels"].get<int>()
+    << " channels)\n";
   s << "  frames            " << j["frames"].get<int>();
   if (j["tpose_frame0"].get<bool>())
-    s << (j["tpose_dropped"].get<bool>() ? " (frame 0 is a T-pose, dropped)" : " (frame 0 is a T-pose, kept)");
+    s << (j["tpose_dropped"].get<bool>() ? " (frame 0 is a T-pose, dropped)"
+                                         : " (frame 0 is a T-pose, kept)");
   s << "\n";
   s << "  fps               " << std::setprecision(3) << j["fps"].get<double>() << "\n";
   s << "  duration          " << std::setprecision(2) << j["duration_s"].get<double>() << " s\n";
   s << "  units             " << j["units"].get<std::string>() << " (" << std::setprecision(5)
-    << j["metres_per_unit"].get<double>() << " m per unit), up " << j["up"].get<std::string>() << "\n";
-  s << "  standing height   " << std::setprecision(3) << j["standing_height_m"].get<double>() << " m\n";
+    << j["metres_per_unit"].get<double>() << " m per unit), up " << j["up"].get<std::string>()
+    << "\n";
+  s << "  standing height   " << std::setprecision(3) << j["standing_height_m"].get<double>()
+    << " m\n";
   s << "  canonical joints\n";
   for (const auto& [k, v] : j["canonical"].items())
     s << "    " << std::left << std::setw(16) << k << v.get<std::string>() << "\n";
@@ -102,14 +107,20 @@ void print_text(const nlohmann::ordered_json& j) {
 
 void setup(CLI::App& app) {
   auto opt = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "Print what a motion file holds (BVH: joints, frames, fps, units, "
-                                             "standing height, canonical joint mapping)");
+  CLI::App* cmd =
+      app.add_subcommand("info",
+                         "Print what a motion file holds (BVH: joints, frames, fps, units, "
+                         "standing height, canonical joint mapping)");
   cmd->add_option("file", opt->file, "Motion file (.bvh)")->required();
   cmd->add_flag("--json", opt->json, "Machine-readable JSON on stdout");
-  cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu")->capture_default_str()
+  cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu")
+      ->capture_default_str()
       ->check(CLI::IsMember({"auto", "m", "cm", "mm", "in", "cmu"}));
-  cmd->add_option("--up", opt->up, "Up axis of the file: y|z")->capture_default_str()->check(CLI::IsMember({"y", "z"}));
-  cmd->add_flag("--keep-tpose", opt->keep_tpose, "Keep a leading T-pose frame (dropped by default)");
+  cmd->add_option("--up", opt->up, "Up axis of the file: y|z")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"y", "z"}));
+  cmd->add_flag("--keep-tpose", opt->keep_tpose,
+                "Keep a leading T-pose frame (dropped by default)");
   cmd->callback([opt]() {
     const nlohmann::ordered_json j = describe(*opt);
     if (opt->json)

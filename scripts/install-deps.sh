@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(cmake g++ make ccache pkg-config
           libtorch-dev libhdf5-dev hdf5-tools libeigen3-dev libcli11-dev
           nlohmann-json3-dev libpng-dev libgif-dev libgtest-dev libgmock-dev
-          libbenchmark-dev)
+          libbenchmark-dev libopenblas0-openmp)  # OpenBLAS: LibTorch falls back to netlib BLAS (~25x slower) without it
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

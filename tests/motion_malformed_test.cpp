@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <random>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "ptnet/error.hpp"
@@ -27,7 +30,8 @@ const Case kCases[] = {
     {"missing_closing_brace.bvh", "15: expected JOINT, End Site or }, found MOTION"},
     {"unknown_channel.bvh", "9: expected a channel name (X|Y|Z + position|rotation), found Xrot"},
     {"bad_channel_count.bvh", "9: expected a channel count of 0, 3 or 6, found 4"},
-    {"too_few_channel_names.bvh", "10: expected a channel name (X|Y|Z + position|rotation), found End"},
+    {"too_few_channel_names.bvh",
+     "10: expected a channel name (X|Y|Z + position|rotation), found End"},
     {"short_frame_line.bvh", "20: expected 9 values, found 8"},
     {"crlf_short_frame_line.bvh", "20: expected 9 values, found 8"},
     {"long_frame_line.bvh", "19: expected 9 values, found 10"},
@@ -69,7 +73,8 @@ TEST(MotionMalformed, EveryFixtureIsListed) {
   std::size_t files = 0;
   for (const auto& e : std::filesystem::directory_iterator(kDir)) {
     ++files;
-    EXPECT_TRUE(listed.count(e.path().filename().string())) << e.path() << " has no expected message";
+    EXPECT_TRUE(listed.count(e.path().filename().string()))
+        << e.path() << " has no expected message";
   }
   EXPECT_EQ(files, listed.size());
   EXPECT_GE(files, 12u);
@@ -83,16 +88,76 @@ TEST(MotionMalformed, ParseErrorsFromMemoryNameTheSource) {
     EXPECT_STREQ(e.what(), "memory.bvh:1: expected HIERARCHY, found end of file");
   }
   // Deep nesting is an error, not a stack overflow.
-  std::string deep = "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n";
+  std::string deep =
+      "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n";
   for (int i = 1; i < 5000; ++i) deep += "JOINT J" + std::to_string(i) + "\n{\nOFFSET 0 0 0\n";
   EXPECT_THROW(ptnet::parse_bvh(deep, "deep.bvh"), ptnet::Error);
+  // An absurd Frame Time does not make resampling allocate gigabytes.
+  std::string slow =
+      "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
+      "MOTION\nFrames: 2\nFrame Time: 1e9\n1 2 3\n4 5 6\n";
+  EXPECT_THROW(ptnet::resample(ptnet::parse_bvh(slow, "slow.bvh"), 30), ptnet::Error);
   // A huge Frames: claim does not allocate for it.
-  std::string huge = "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
-                     "MOTION\nFrames: 4000000000000\nFrame Time: 0.1\n1 2 3\n";
+  std::string huge =
+      "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xrotation Yrotation Zrotation\n}\n"
+      "MOTION\nFrames: 4000000000000\nFrame Time: 0.1\n1 2 3\n";
   try {
     ptnet::parse_bvh(huge, "huge.bvh");
     FAIL();
   } catch (const ptnet::Error& e) {
-    EXPECT_STREQ(e.what(), "huge.bvh:12: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
+    EXPECT_STREQ(
+        e.what(),
+        "huge.bvh:11: expected 4000000000000 frame lines (Frames: 4000000000000), found 1");
   }
+}
+
+TEST(MotionMalformed, TruncationsAndMutationsNeverCrash) {
+  std::ifstream in(std::string(PTNET_TEST_DATA) + "/bvh/tpose_cmu_small.bvh", std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string good = ss.str();
+  ASSERT_GT(good.size(), 1000u);
+  int accepted = 0, rejected = 0;
+  auto attempt = [&](const std::string& text) {
+    try {
+      ptnet::Bvh b = ptnet::parse_bvh(text, "fuzz.bvh");
+      ASSERT_EQ(b.values.size(), std::size_t(b.frames()) * std::size_t(b.channel_count));
+      ++accepted;
+      try {  // and the rest of the path: units, mapping, T-pose, resampling, FK
+        const ptnet::Motion m = ptnet::motion_from_bvh(b, ptnet::MotionOptions{});
+        ASSERT_GE(m.size(), 1);
+      } catch (const ptnet::Error& e) {
+        ASSERT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+      }
+    } catch (const ptnet::Error& e) {
+      const std::string m = e.what();
+      ASSERT_EQ(m.rfind("fuzz.bvh:", 0), 0u) << m;
+      ASSERT_EQ(m.find('\n'), std::string::npos) << m;
+      ++rejected;
+    }
+  };
+  for (std::size_t n = 0; n < good.size(); n += 7) attempt(good.substr(0, n));
+  std::mt19937_64 rng(11);
+  const char alphabet[] = "0123456789.-+eE{} \t\r\nXYZrotainpsJOINTEndSite:";
+  for (int i = 0; i < 3000; ++i) {
+    std::string t = good;
+    const int edits = 1 + int(rng() % 3);
+    for (int k = 0; k < edits; ++k) {
+      const std::size_t at = rng() % t.size();
+      switch (rng() % 3) {
+        case 0:
+          t[at] = alphabet[rng() % (sizeof alphabet - 1)];
+          break;
+        case 1:
+          t.erase(at, 1 + rng() % 8);
+          break;
+        default:
+          t.insert(at, 1, alphabet[rng() % (sizeof alphabet - 1)]);
+          break;
+      }
+    }
+    attempt(t);
+  }
+  EXPECT_GT(rejected, 1000);
+  EXPECT_GT(accepted, 10);  // harmless edits (a digit changed) still parse
 }

@@ -140,14 +140,22 @@ double standing_height(const Motion& motion);
 Pose canonical_rest_offsets(double height_cm);
 
 // Retargets onto a body of `height_cm`: every bone keeps its world direction
-// per frame (the joint rotations) and takes the target's length; the root
-// translation scales with leg length; the motion is re-grounded so that the
-// lowest foot point during stance is at z = 0.
+// per frame (joint rotations kept, up to bone twist) and takes the target's
+// length; the pelvis (spine, hips) and chest (neck, shoulders) groups are
+// placed rigidly by the frame of their source bones; the root's horizontal
+// displacement from frame 0 and its height scale with leg length; the motion
+// is re-grounded so that the lowest foot point during stance (5th percentile
+// of lowest_foot_z over frames) is at z = 0. Throws Error for an empty motion
+// or a height outside 50-250 cm.
 Motion retarget(const Motion& motion, double height_cm);
 
 // The motion as a BVH on the canonical skeleton (joints named as
-// joint_name(), y-up, centimetres, ZXY rotation channels). Reading it back
-// gives the same world positions within 1e-4 m.
+// joint_name(), y-up, centimetres, root Xposition Yposition Zposition then
+// ZXY rotation channels; End Sites: head top, toe tips, hands). Rotations
+// come from the positions (pelvis and chest: frame of their lateral and up
+// bones; others: swing in the parent's frame). For canonical-proportioned
+// motions (generate_motion, retarget) reading it back gives the same world
+// positions within 1e-4 m.
 Bvh motion_to_bvh(const Motion& motion);
 
 // Lowest point of the foot soles (heel, toe tip) for one pose, z (m).
@@ -172,10 +180,16 @@ struct GenerateOptions {
 };
 
 // A seeded procedural clip on the canonical skeleton, grounded, with planted
-// stance feet. Same options, same motion.
+// stance feet. Same options, same motion. Walking paces back and forth along
+// x on the 1.6 m x 0.56 m mat (turning at its ends); the other categories stay
+// near the origin. Throws Error for seconds outside (0, 3600], fps outside
+// [1, 1000], performer or take < 1.
 Motion generate_motion(const GenerateOptions& options);
 
 // Height (cm) and sex of a procedural performer (deterministic in `performer`).
 double performer_height_cm(int performer, std::uint64_t seed = 0);
+// Sex of a procedural performer, 0 female, 1 male (alternating with
+// `performer`); performer_height_cm draws from that sex's stature.
+int performer_sex(int performer, std::uint64_t seed = 0);
 
 }  // namespace ptnet

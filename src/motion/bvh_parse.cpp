@@ -231,8 +231,8 @@ const char* frame_value(const char* p, const char* end, double& v, bool& ok) {
 }
 
 std::string frame_lines(long frames) {
-  return std::to_string(frames) + (frames == 1 ? " frame line" : " frame lines") + " (Frames: " +
-         std::to_string(frames) + ")";
+  return std::to_string(frames) + (frames == 1 ? " frame line" : " frame lines") +
+         " (Frames: " + std::to_string(frames) + ")";
 }
 
 }  // namespace
@@ -298,10 +298,9 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
       ++line;
       continue;
     }
-    if (read == frames)
-      throw Error::at(source, line,
-                      frame_lines(frames), "more");
-    if ((std::size_t(read) + 1) * cc > bvh.values.size()) bvh.values.resize(bvh.values.size() * 2 + cc);
+    if (read == frames) throw Error::at(source, line, frame_lines(frames), "more");
+    if ((std::size_t(read) + 1) * cc > bvh.values.size())
+      bvh.values.resize(bvh.values.size() * 2 + cc);
     double* out = bvh.values.data() + std::size_t(read) * cc;
     std::size_t count = 0;
     for (;;) {
@@ -326,8 +325,7 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
     if (p < end) ++p;  // the '\n'
     ++line;
   }
-  if (read != frames)
-    throw Error::at(source, line, frame_lines(frames), std::to_string(read));
+  if (read != frames) throw Error::at(source, line, frame_lines(frames), std::to_string(read));
   bvh.values.resize(std::size_t(frames) * cc);
   return bvh;
 }

@@ -101,7 +101,9 @@ std::string format_bvh(const Bvh& bvh) {
     if (b.first_channel < 0 || b.first_channel + int(b.channels.size()) > bvh.channel_count)
       throw Error::in(who, "joint " + b.name + " has channel columns past the frame width");
     if (b.parent < 0) {
-      if (root >= 0) throw Error::in(who, "more than one ROOT joint (" + bvh.joints[std::size_t(root)].name + ", " + b.name + ")");
+      if (root >= 0)
+        throw Error::in(who, "more than one ROOT joint (" + bvh.joints[std::size_t(root)].name +
+                                 ", " + b.name + ")");
       root = int(j);
     } else if (b.parent >= int(bvh.joints.size()) || b.parent == int(j)) {
       throw Error::in(who, "joint " + b.name + " has an invalid parent");
@@ -110,7 +112,8 @@ std::string format_bvh(const Bvh& bvh) {
     }
   }
   if (root < 0) throw Error::in(who, "no ROOT joint");
-  if (channels != bvh.channel_count) throw Error::in(who, "channel count does not match the joints' channels");
+  if (channels != bvh.channel_count)
+    throw Error::in(who, "channel count does not match the joints' channels");
 
   w.out.reserve(bvh.values.size() * 10 + bvh.joints.size() * 120 + 256);
   w.out += "HIERARCHY\n";

@@ -26,16 +26,16 @@ namespace ptnet {
 namespace {
 
 constexpr std::array<const char*, kJointCount> kNames = {
-    "pelvis",         "spine",         "chest",        "neck",           "head",
-    "left_hip",       "left_knee",     "left_ankle",   "left_toe",       "right_hip",
-    "right_knee",     "right_ankle",   "right_toe",    "left_shoulder",  "left_elbow",
-    "left_wrist",     "right_shoulder", "right_elbow", "right_wrist"};
+    "pelvis",     "spine",          "chest",       "neck",          "head",
+    "left_hip",   "left_knee",      "left_ankle",  "left_toe",      "right_hip",
+    "right_knee", "right_ankle",    "right_toe",   "left_shoulder", "left_elbow",
+    "left_wrist", "right_shoulder", "right_elbow", "right_wrist"};
 
 constexpr std::array<int, kJointCount> kParents = {
-    -1,      kPelvis,     kSpine,     kChest,     kNeck,
-    kPelvis, kLeftHip,    kLeftKnee,  kLeftAnkle, kPelvis,
-    kRightHip, kRightKnee, kRightAnkle, kChest,   kLeftShoulder,
-    kLeftElbow, kChest,   kRightShoulder, kRightElbow};
+    -1,         kPelvis,    kSpine,         kChest,     kNeck,
+    kPelvis,    kLeftHip,   kLeftKnee,      kLeftAnkle, kPelvis,
+    kRightHip,  kRightKnee, kRightAnkle,    kChest,     kLeftShoulder,
+    kLeftElbow, kChest,     kRightShoulder, kRightElbow};
 
 // Fractions of the pelvis -> neck chain length (0.070 / 0.288, 0.190 / 0.288).
 constexpr double kSpineFraction = 0.070 / 0.288;
@@ -47,8 +47,9 @@ std::string normalise(const std::string& name) {
   if (cut != std::string::npos) s = s.substr(cut + 1);
   std::string low;
   for (char c : s) low += char(std::tolower(static_cast<unsigned char>(c)));
-  static const char* const kPrefixes[] = {"cc_base_", "mixamorig_", "mixamorig", "bip001_", "bip01_",
-                                          "bip001 ", "bip01 ", "def-", "def_"};
+  static const char* const kPrefixes[] = {"cc_base_", "mixamorig_", "mixamorig",
+                                          "bip001_",  "bip01_",     "bip001 ",
+                                          "bip01 ",   "def-",       "def_"};
   for (const char* p : kPrefixes) {
     const std::string pre(p);
     if (low.size() > pre.size() && low.compare(0, pre.size(), pre) == 0) {
@@ -78,14 +79,17 @@ struct SideNames {
 const std::vector<SideNames>& limb_names() {
   static const std::vector<SideNames> kLimbs = {
       {kLeftHip, {"leftupleg", "lupleg", "lthigh", "leftthigh", "lhip", "lefthip", "lfemur"}},
-      {kLeftKnee, {"leftleg", "lleg", "lcalf", "leftcalf", "lknee", "leftknee", "leftlowleg",
-                   "lshin", "leftshin", "ltibia"}},
+      {kLeftKnee,
+       {"leftleg", "lleg", "lcalf", "leftcalf", "lknee", "leftknee", "leftlowleg", "lshin",
+        "leftshin", "ltibia"}},
       {kLeftAnkle, {"lankle", "leftankle", "leftfoot", "lfoot"}},
-      {kLeftToe, {"lefttoebase", "ltoebase", "lefttoe", "ltoe", "lefttoes", "ltoes", "lball",
-                  "leftball", "lfoot", "leftfoot"}},
-      {kLeftShoulder, {"leftarm", "lupperarm", "leftupperarm", "larm", "lhumerus", "lshoulder"}},
-      {kLeftElbow, {"leftforearm", "lforearm", "lelbow", "leftelbow", "llowerarm",
-                    "leftlowerarm", "lradius"}},
+      {kLeftToe,
+       {"lefttoebase", "ltoebase", "lefttoe", "ltoe", "lefttoes", "ltoes", "lball", "leftball",
+        "lfoot", "leftfoot"}},
+      {kLeftShoulder,
+       {"leftarm", "lupperarm", "leftupperarm", "larm", "lhumerus", "lshoulder", "leftshoulder"}},
+      {kLeftElbow,
+       {"leftforearm", "lforearm", "lelbow", "leftelbow", "llowerarm", "leftlowerarm", "lradius"}},
       {kLeftWrist, {"lwrist", "leftwrist", "lefthand", "lhand"}},
   };
   return kLimbs;
@@ -112,8 +116,8 @@ bool descends(const Bvh& bvh, int j, int ancestor) {
 // First joint whose normalised name is in `names` (in list order) and that
 // descends from `ancestor`; zero-length joints (offset 0, as CMU's Neck) are
 // passed over when a later candidate also fits.
-int pick(const Bvh& bvh, const std::vector<std::string>& norm, const std::vector<std::string>& names,
-         int ancestor) {
+int pick(const Bvh& bvh, const std::vector<std::string>& norm,
+         const std::vector<std::string>& names, int ancestor) {
   int zero_length = -1;
   for (const std::string& want : names)
     for (std::size_t j = 0; j < norm.size(); ++j)
@@ -142,9 +146,21 @@ std::array<int, kJointCount> map_canonical(const Bvh& bvh) {
   std::vector<std::string> norm;
   for (const BvhJoint& j : bvh.joints) norm.push_back(normalise(j.name));
 
+  // Our own canonical names (motion_to_bvh writes them): taken as they are.
+  bool all = true;
+  for (int k = 0; k < kJointCount && all; ++k) {
+    const std::string want = normalise(kNames[std::size_t(k)]);
+    for (std::size_t j = 0; j < norm.size() && map[std::size_t(k)] < 0; ++j)
+      if (norm[j] == want) map[std::size_t(k)] = int(j);
+    all = map[std::size_t(k)] >= 0;
+  }
+  if (all) return map;
+  map.fill(-1);
+
   map[kPelvis] = pick(bvh, norm, {"hips", "hip", "pelvis", "root"}, -1);
   if (map[kPelvis] >= 0) {
-    map[kNeck] = pick(bvh, norm, {"neck", "necktwist01", "neck01", "neck1", "lowerneck"}, map[kPelvis]);
+    map[kNeck] =
+        pick(bvh, norm, {"neck", "necktwist01", "neck01", "neck1", "lowerneck"}, map[kPelvis]);
     if (map[kNeck] >= 0) map[kHead] = pick(bvh, norm, {"head"}, map[kNeck]);
     for (const SideNames& limb : limb_names()) {
       std::vector<std::string> right;
@@ -153,7 +169,8 @@ std::array<int, kJointCount> map_canonical(const Bvh& bvh) {
         const int joint = side == 0 ? limb.joint : mirror(limb.joint);
         const int parent = joint_parent(joint);
         // Arms hang from the chest, chosen below: any joint under the pelvis.
-        const int ancestor = (joint == kLeftShoulder || joint == kRightShoulder) ? map[kPelvis] : map[parent];
+        const int ancestor =
+            (joint == kLeftShoulder || joint == kRightShoulder) ? map[kPelvis] : map[parent];
         if (ancestor < 0) continue;
         map[joint] = pick(bvh, norm, side == 0 ? limb.names : right, ancestor);
       }
@@ -197,12 +214,14 @@ std::array<int, kJointCount> map_canonical(const Bvh& bvh) {
 
   std::string missing;
   for (int k = 0; k < kJointCount; ++k)
-    if (map[std::size_t(k)] < 0) missing += (missing.empty() ? "" : ", ") + std::string(kNames[std::size_t(k)]);
+    if (map[std::size_t(k)] < 0)
+      missing += (missing.empty() ? "" : ", ") + std::string(kNames[std::size_t(k)]);
   if (!missing.empty()) {
     std::string found;
     for (const BvhJoint& j : bvh.joints) found += (found.empty() ? "" : " ") + j.name;
-    throw Error::in(bvh.source.empty() ? "BVH" : bvh.source,
-                    "cannot map to the canonical joints: missing " + missing + "; joints found: " + found);
+    throw Error::in(
+        bvh.source.empty() ? "BVH" : bvh.source,
+        "cannot map to the canonical joints: missing " + missing + "; joints found: " + found);
   }
   return map;
 }

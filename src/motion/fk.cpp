@@ -5,10 +5,11 @@
 // local rotation is the product of its rotation channels in file order.
 // The per-joint channel layout is computed once per call; the frame loop
 // does no allocation (>= 10^6 joint-frames/s on one core, bench_motion).
+#include "fk.hpp"
+
 #include <cmath>
 #include <vector>
 
-#include "fk.hpp"
 #include "ptnet/error.hpp"
 
 namespace ptnet::detail {
@@ -19,11 +20,13 @@ FkLayout::FkLayout(const Bvh& bvh, double scale) : scale_(scale) {
     const BvhJoint& src = bvh.joints[j];
     Layout& l = joints_[j];
     l.parent = src.parent;
-    if (l.parent >= int(j)) throw Error::in(bvh.source, "joint " + src.name + " listed before its parent");
+    if (l.parent >= int(j))
+      throw Error::in(bvh.source, "joint " + src.name + " listed before its parent");
     for (int a = 0; a < 3; ++a) l.offset[a] = src.offset[a] * scale;
     for (std::size_t c = 0; c < src.channels.size(); ++c) {
       const int col = src.first_channel + int(c);
-      if (col >= bvh.channel_count) throw Error::in(bvh.source, "channel columns past the frame width");
+      if (col >= bvh.channel_count)
+        throw Error::in(bvh.source, "channel columns past the frame width");
       const Channel ch = src.channels[c];
       if (is_rotation(ch)) {
         if (l.rotations < 3) {
@@ -38,7 +41,8 @@ FkLayout::FkLayout(const Bvh& bvh, double scale) : scale_(scale) {
   }
 }
 
-void FkLayout::run(const double* frame, Eigen::Vector3d* positions, Eigen::Matrix3d* rotations) const {
+void FkLayout::run(const double* frame, Eigen::Vector3d* positions,
+                   Eigen::Matrix3d* rotations) const {
   const std::size_t n = joints_.size();
   if (scratch_.size() < n) scratch_.resize(n);
   for (std::size_t j = 0; j < n; ++j) {
@@ -54,7 +58,8 @@ void FkLayout::run(const double* frame, Eigen::Vector3d* positions, Eigen::Matri
     } else {
       const Frame& pf = scratch_[std::size_t(l.parent)];
       const double* R = pf.r;  // column-major
-      for (int a = 0; a < 3; ++a) g.p[a] = pf.p[a] + R[a] * t[0] + R[3 + a] * t[1] + R[6 + a] * t[2];
+      for (int a = 0; a < 3; ++a)
+        g.p[a] = pf.p[a] + R[a] * t[0] + R[3 + a] * t[1] + R[6 + a] * t[2];
       for (int a = 0; a < 9; ++a) g.r[a] = R[a];
     }
     // Right-multiply by each elementary rotation: only two columns change.
@@ -64,9 +69,18 @@ void FkLayout::run(const double* frame, Eigen::Vector3d* positions, Eigen::Matri
       double* r = g.r;
       int u, v;  // columns mixed: R*R_x mixes (1,2), R*R_y (2,0), R*R_z (0,1)
       switch (l.rot_axis[k]) {
-        case 0: u = 1; v = 2; break;
-        case 1: u = 2; v = 0; break;
-        default: u = 0; v = 1; break;
+        case 0:
+          u = 1;
+          v = 2;
+          break;
+        case 1:
+          u = 2;
+          v = 0;
+          break;
+        default:
+          u = 0;
+          v = 1;
+          break;
       }
       for (int a = 0; a < 3; ++a) {
         const double cu = r[3 * u + a], cv = r[3 * v + a];

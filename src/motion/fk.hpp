@@ -14,7 +14,8 @@ class FkLayout {
   FkLayout(const Bvh& bvh, double scale);  // scale: metres per file unit
   // One frame: positions [J] in file axes (scaled), optional global
   // rotations [J] (file axes). No allocation after the first call.
-  void run(const double* frame, Eigen::Vector3d* positions, Eigen::Matrix3d* rotations = nullptr) const;
+  void run(const double* frame, Eigen::Vector3d* positions,
+           Eigen::Matrix3d* rotations = nullptr) const;
 
  private:
   struct Layout {

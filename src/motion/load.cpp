@@ -12,8 +12,9 @@ namespace ptnet {
 
 Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
   if (source.frames() < 1) throw Error::in(source.source, "no frames");
-  const double scale = options.metres_per_unit > 0 ? options.metres_per_unit
-                                                   : metres_per_unit(source, options.units, options.up);
+  const double scale = options.metres_per_unit > 0
+                           ? options.metres_per_unit
+                           : metres_per_unit(source, options.units, options.up);
   const std::array<int, kJointCount> map = map_canonical(source);
 
   const Bvh* bvh = &source;
@@ -36,7 +37,8 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
   const std::size_t J = bvh->joints.size();
   m.frames.resize(std::size_t(bvh->frames()));
   for (std::size_t f = 0; f < m.frames.size(); ++f)
-    for (int k = 0; k < kJointCount; ++k) m.frames[f][std::size_t(k)] = p[f * J + std::size_t(map[std::size_t(k)])];
+    for (int k = 0; k < kJointCount; ++k)
+      m.frames[f][std::size_t(k)] = p[f * J + std::size_t(map[std::size_t(k)])];
 
   // Ground: the floor is where the feet are in most frames. Its height is
   // the lower quartile of the per-frame lowest sole point: robust to

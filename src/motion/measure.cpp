@@ -21,13 +21,13 @@ namespace {
 namespace A = anthropometry;
 
 // Rest-pose foot vectors (fractions of H), x forward, z up.
-const Eigen::Vector3d kToeRest(A::kDrillisContini.foot_length* A::kFoot.mtp -
-                                   A::kDrillisContini.foot_length* A::kFoot.ankle,
-                               0, A::kFoot.mtp_height - A::kDrillisContini.ankle);  // (0.0790, 0, -0.030)
+const Eigen::Vector3d kToeRest(
+    A::kDrillisContini.foot_length* A::kFoot.mtp - A::kDrillisContini.foot_length * A::kFoot.ankle,
+    0, A::kFoot.mtp_height - A::kDrillisContini.ankle);  // (0.0790, 0, -0.030)
 const Eigen::Vector3d kHeelRest(-A::kDrillisContini.foot_length* A::kFoot.ankle, 0,
                                 -A::kDrillisContini.ankle);  // (-0.0334, 0, -0.039)
 const Eigen::Vector3d kTipRest(A::kDrillisContini.foot_length*(1 - A::kFoot.mtp), 0,
-                               -A::kFoot.mtp_height);  // (0.0395, 0, -0.009)
+                               -A::kFoot.mtp_height);       // (0.0395, 0, -0.009)
 constexpr double kHeadTop = 1.0 - A::kDrillisContini.chin;  // 0.130 H above the head joint
 
 // A vector in the rest foot's sagittal frame (u along ankle->toe, w normal
@@ -63,7 +63,9 @@ double lowest_foot_z(const Pose& pose) {
 }
 
 double standing_height(const Motion& motion) {
-  if (motion.frames.empty()) throw Error::in(motion.name.empty() ? "motion" : motion.name, "no frames to measure a standing height");
+  if (motion.frames.empty())
+    throw Error::in(motion.name.empty() ? "motion" : motion.name,
+                    "no frames to measure a standing height");
   // The first half second (at least one frame): median of the per-frame
   // estimates, robust to a stray frame.
   const int n = std::clamp(int(std::lround(0.5 * motion.fps)), 1, motion.size());

@@ -24,14 +24,23 @@ struct RotationLayout {
 }  // namespace
 
 Bvh resample(const Bvh& bvh, double fps) {
-  if (!(fps > 0) || !std::isfinite(fps)) throw Error::in(bvh.source, "resample: expected a positive frame rate");
+  if (!(fps > 0) || !std::isfinite(fps))
+    throw Error::in(bvh.source, "resample: expected a positive frame rate");
   const int F = bvh.frames();
   if (F < 1) throw Error::in(bvh.source, "resample: no frames");
   Bvh out = bvh;
   out.frame_time = 1.0 / fps;
   const double duration = (F - 1) * bvh.frame_time;
-  const int n = int(std::floor(duration * fps + 1e-6)) + 1;
+  const double frames_out = std::floor(duration * fps + 1e-6) + 1;
   const std::size_t cc = std::size_t(bvh.channel_count);
+  // An implausible Frame Time (hours per frame) must not exhaust memory.
+  if (frames_out * double(cc) > 2e8)
+    throw Error::in(bvh.source, "resampling " + std::to_string(F) + " frames of " +
+                                    std::to_string(bvh.frame_time) + " s to " +
+                                    std::to_string(fps) + " fps would make " +
+                                    std::to_string(std::llround(frames_out)) +
+                                    " frames; check Frame Time");
+  const int n = int(frames_out);
   out.values.assign(std::size_t(n) * cc, 0.0);
 
   // Joints with three distinct rotation axes are slerped; any other
@@ -91,7 +100,8 @@ Bvh resample(const Bvh& bvh, double fps) {
     for (const RotationLayout& r : slerped) {
       const Eigen::Quaterniond q = quat(r0, r).slerp(a, quat(r1, r));
       const Eigen::Vector3d e =
-          detail::euler_angles(q.toRotationMatrix(), r.axes[0], r.axes[1], r.axes[2]) * detail::kRadToDeg;
+          detail::euler_angles(q.toRotationMatrix(), r.axes[0], r.axes[1], r.axes[2]) *
+          detail::kRadToDeg;
       // Reference: the linear blend of the source angles (where no wrap
       // happens, the nearest representation).
       double ref[3];

@@ -9,9 +9,9 @@
 namespace ptnet {
 namespace {
 
-constexpr double kArmMaxSlope = 0.34;    // |sin| of an arm segment's elevation (~20 deg)
-constexpr double kArmMinOutward = 0.80;  // cos of the angle to the shoulder line (~37 deg)
-constexpr double kLegMinVertical = 0.90; // cos of a leg segment's angle to -z (~26 deg)
+constexpr double kArmMaxSlope = 0.34;     // |sin| of an arm segment's elevation (~20 deg)
+constexpr double kArmMinOutward = 0.80;   // cos of the angle to the shoulder line (~37 deg)
+constexpr double kLegMinVertical = 0.90;  // cos of a leg segment's angle to -z (~26 deg)
 
 Eigen::Vector3d unit(const Eigen::Vector3d& v) {
   const double n = v.norm();

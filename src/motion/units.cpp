@@ -25,12 +25,18 @@ std::string lower(std::string s) {
 
 double unit_metres(Units u) {
   switch (u) {
-    case Units::m: return 1.0;
-    case Units::cm: return 0.01;
-    case Units::mm: return 0.001;
-    case Units::in: return 0.0254;
-    case Units::cmu: return kCmuUnitM;
-    case Units::automatic: break;
+    case Units::m:
+      return 1.0;
+    case Units::cm:
+      return 0.01;
+    case Units::mm:
+      return 0.001;
+    case Units::in:
+      return 0.0254;
+    case Units::cmu:
+      return kCmuUnitM;
+    case Units::automatic:
+      break;
   }
   return 0;
 }
@@ -67,7 +73,8 @@ Units parse_units(const std::string& text) {
   if (s == "mm") return Units::mm;
   if (s == "in" || s == "inch") return Units::in;
   if (s == "cmu") return Units::cmu;
-  throw Error("units: expected auto, m, cm, mm, in or cmu, found " + (text.empty() ? std::string("nothing") : text));
+  throw Error("units: expected auto, m, cm, mm, in or cmu, found " +
+              (text.empty() ? std::string("nothing") : text));
 }
 
 UpAxis parse_up_axis(const std::string& text) {
@@ -79,12 +86,18 @@ UpAxis parse_up_axis(const std::string& text) {
 
 const char* units_name(Units units) {
   switch (units) {
-    case Units::automatic: return "auto";
-    case Units::m: return "m";
-    case Units::cm: return "cm";
-    case Units::mm: return "mm";
-    case Units::in: return "in";
-    case Units::cmu: return "cmu";
+    case Units::automatic:
+      return "auto";
+    case Units::m:
+      return "m";
+    case Units::cm:
+      return "cm";
+    case Units::mm:
+      return "mm";
+    case Units::in:
+      return "in";
+    case Units::cmu:
+      return "cmu";
   }
   return "?";
 }
@@ -104,8 +117,8 @@ double metres_per_unit(const Bvh& bvh, Units units, UpAxis up) {
   for (Units u : candidates) {
     const double h = extent * unit_metres(u);
     const bool human = h >= kMinHeightM && h <= kMaxHeightM;
-    const double score = human ? std::abs(h - kTypicalHeightM)
-                               : 1e3 + std::abs(std::log(h / kTypicalHeightM));
+    const double score =
+        human ? std::abs(h - kTypicalHeightM) : 1e3 + std::abs(std::log(h / kTypicalHeightM));
     if (score < best_score) {
       best_score = score;
       best = u;

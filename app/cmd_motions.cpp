@@ -1,0 +1,158 @@
+// ptnet motions: procedural motion clips (BVH on the canonical skeleton).
+//
+//   ptnet motions --category walking --performer 2 --take 1 --seconds 10 --out walk.bvh
+//   ptnet motions --performers 5 --takes 2 --out-dir clips/      # + clips/clips.csv
+//
+// One clip, or a whole set (every performer x category x take) with a
+// clips.csv manifest (file,subject,category,take; subject = performer).
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/motion.hpp"
+
+namespace ptnet::cli {
+namespace {
+
+struct MotionsOptions {
+  // One clip.
+  std::string category;
+  int performer = 1;
+  int take = 1;
+  std::string out;
+  // A set.
+  int performers = 0;
+  int takes = 1;
+  std::string categories = "walking,rom,freestyle,acting";
+  std::string out_dir;
+  // Both.
+  double seconds = 10;
+  double fps = 30;
+  std::uint64_t seed = 0;
+  double height_cm = 0;
+  bool force = false;
+};
+
+std::vector<Category> parse_categories(const std::string& list) {
+  std::vector<Category> out;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) out.push_back(parse_category(item));
+  if (out.empty()) throw Error("--categories: expected a comma-separated list of categories, found '" + list + "'");
+  return out;
+}
+
+GenerateOptions generate_options(const MotionsOptions& o, Category c, int performer, int take) {
+  GenerateOptions g;
+  g.category = c;
+  g.performer = performer;
+  g.take = take;
+  g.seconds = o.seconds;
+  g.fps = o.fps;
+  g.seed = o.seed;
+  g.height_cm = o.height_cm;
+  return g;
+}
+
+void progress(const std::string& line) {
+  if (!globals().quiet) std::cerr << line << "\n";
+}
+
+void run_one(const MotionsOptions& o) {
+  const Category c = parse_category(o.category);
+  check_output_path(o.out, o.force);
+  const Motion m = generate_motion(generate_options(o, c, o.performer, o.take));
+  write_bvh(motion_to_bvh(m), o.out, o.force);
+  char height[32];
+  std::snprintf(height, sizeof height, "%.1f", o.height_cm > 0 ? o.height_cm : performer_height_cm(o.performer, o.seed));
+  progress("[motions] " + o.out + ": " + category_name(c) + ", performer " + std::to_string(o.performer) + " (" +
+           height + " cm), take " + std::to_string(o.take) + ", " + std::to_string(m.size()) + " frames");
+}
+
+void run_set(const MotionsOptions& o) {
+  namespace fs = std::filesystem;
+  const std::vector<Category> categories = parse_categories(o.categories);
+  std::error_code ec;
+  fs::create_directories(o.out_dir, ec);
+  if (!fs::is_directory(o.out_dir)) throw Error::in(o.out_dir, "cannot create the output folder");
+  struct Clip {
+    std::string file;
+    Category category;
+    int performer, take;
+  };
+  std::vector<Clip> clips;
+  for (int p = 1; p <= o.performers; ++p)
+    for (Category c : categories)
+      for (int t = 1; t <= o.takes; ++t)
+        clips.push_back({"p" + std::to_string(p) + "_" + category_name(c) + "_t" + std::to_string(t) + ".bvh", c, p, t});
+  // Refuse before writing anything.
+  const std::string manifest = (fs::path(o.out_dir) / "clips.csv").string();
+  check_output_path(manifest, o.force);
+  for (const Clip& clip : clips) check_output_path((fs::path(o.out_dir) / clip.file).string(), o.force);
+
+  std::string csv = "file,subject,category,take\n";
+  for (std::size_t i = 0; i < clips.size(); ++i) {
+    const Clip& clip = clips[i];
+    const Motion m = generate_motion(generate_options(o, clip.category, clip.performer, clip.take));
+    write_bvh(motion_to_bvh(m), (fs::path(o.out_dir) / clip.file).string(), o.force);
+    csv += clip.file + "," + std::to_string(clip.performer) + "," + category_name(clip.category) + "," +
+           std::to_string(clip.take) + "\n";
+    progress("[motions " + std::to_string(i + 1) + "/" + std::to_string(clips.size()) + "] " + clip.file + " " +
+             std::to_string(m.size()) + " frames");
+  }
+  write_text_file(manifest, csv, o.force);
+  progress("[motions] " + manifest + ": " + std::to_string(clips.size()) + " clips");
+}
+
+void setup(CLI::App& app) {
+  auto opt = std::make_shared<MotionsOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "motions", "Generate procedural motion clips (walking, rom, freestyle, acting) as BVH on the canonical skeleton");
+  auto* category = cmd->add_option("--category", opt->category, "One clip: walking|rom|freestyle|acting")
+                       ->check(CLI::IsMember({"walking", "rom", "freestyle", "acting"}));
+  auto* performer = cmd->add_option("--performer", opt->performer, "One clip: performer (1..), sets style and height")
+                        ->capture_default_str()->check(CLI::Range(1, 1000000));
+  auto* take = cmd->add_option("--take", opt->take, "One clip: take (1..), varies the sequence")
+                   ->capture_default_str()->check(CLI::Range(1, 1000000));
+  auto* out = cmd->add_option("--out", opt->out, "One clip: output .bvh file");
+  auto* performers = cmd->add_option("--performers", opt->performers, "A set: performers 1..N")
+                         ->check(CLI::Range(1, 10000));
+  auto* takes = cmd->add_option("--takes", opt->takes, "A set: takes per performer and category")
+                    ->capture_default_str()->check(CLI::Range(1, 1000));
+  auto* categories = cmd->add_option("--categories", opt->categories, "A set: comma-separated categories")
+                         ->capture_default_str();
+  auto* out_dir = cmd->add_option("--out-dir", opt->out_dir, "A set: output folder (one BVH per clip + clips.csv)");
+  cmd->add_option("--seconds", opt->seconds, "Clip length (s)")->capture_default_str()->check(CLI::Range(0.1, 3600.0));
+  cmd->add_option("--fps", opt->fps, "Frame rate (Hz)")->capture_default_str()->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--seed", opt->seed, "Seed, mixed with performer and take")->capture_default_str();
+  cmd->add_option("--height-cm", opt->height_cm, "Body height (cm); default: the performer's own")
+      ->check(CLI::Range(50.0, 250.0));
+  cmd->add_flag("--force", opt->force, "Overwrite existing files");
+  out->excludes(out_dir);
+  out->needs(category);
+  for (auto* o : {performers, takes, categories}) o->excludes(out)->needs(out_dir);
+  for (auto* o : {category, performer, take}) o->excludes(out_dir);
+  cmd->callback([opt]() {
+    if (opt->out.empty() && opt->out_dir.empty())
+      throw CLI::RequiredError("--out (one clip) or --out-dir (a set)");
+    if (!opt->out_dir.empty() && opt->performers < 1) throw CLI::RequiredError("--performers");
+    if (!opt->out.empty())
+      run_one(*opt);
+    else
+      run_set(*opt);
+  });
+}
+
+}  // namespace
+
+PTNET_COMMAND(10, setup);
+
+}  // namespace ptnet::cli

@@ -1,0 +1,142 @@
+// ptnet transfer: a recorded pressure sequence of one body -> the sequence a
+// different body would have produced, with a trained model.
+//
+//   ptnet transfer --model model/ --in data.h5 --sequence walking_P1_t1__orig1 \
+//                  --target male,185,95 --out out.h5
+//   ptnet transfer --model model/ --in rec.npy --source female,165,60 \
+//                  --target male,185,95 --out out.npy
+#include <iostream>
+#include <sstream>
+
+#include "command.hpp"
+#include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/npy.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/transfer.hpp"
+
+namespace ptnet::cli {
+namespace {
+
+struct TransferCli {
+  std::string model, in, sequence, source, target, out, device = "cpu";
+  int stride = 5, threads = 0;
+  bool force = false;
+};
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// "female,165,60" (sex female|male|f|m|0|1, height cm, weight kg).
+BodySpec parse_body(const std::string& text, const std::string& option) {
+  std::stringstream ss(text);
+  std::string sex, h, w, extra;
+  std::getline(ss, sex, ',');
+  std::getline(ss, h, ',');
+  std::getline(ss, w, ',');
+  const bool more = static_cast<bool>(std::getline(ss, extra, ','));
+  BodySpec b;
+  b.id = option.substr(2);
+  if (sex == "female" || sex == "f" || sex == "0") b.sex = Sex::female;
+  else if (sex == "male" || sex == "m" || sex == "1") b.sex = Sex::male;
+  else throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found \"" + text + "\"");
+  try {
+    std::size_t used_h = 0, used_w = 0;
+    b.height_cm = std::stod(h, &used_h);
+    b.weight_kg = std::stod(w, &used_w);
+    if (used_h != h.size() || used_w != w.size() || more) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found \"" + text + "\"");
+  }
+  return b;
+}
+
+const char* sex_name_text(const BodySpec& b) { return b.sex == Sex::male ? "male" : "female"; }
+
+void run(const TransferCli& c) {
+  const bool npy_out = ends_with(c.out, ".npy");
+  if (!npy_out && !ends_with(c.out, ".h5"))
+    throw Error("--out: expected a .h5 or .npy file name, found \"" + c.out + "\"");
+  check_output_path(c.out, c.force);
+  TransferOptions to;
+  to.stride = c.stride;
+  to.threads = c.threads;
+  to.device = c.device;
+  Transfer net(c.model, to);
+  const BodySpec target = parse_body(c.target, "--target");
+  check_body_range(target, "target body");
+
+  PressureSequence src;
+  BodySpec source;
+  SequenceMeta meta;
+  DatasetInfo info;
+  info.mat = net.model().mat;
+  info.fps = net.model().fps;
+  if (ends_with(c.in, ".npy")) {
+    if (c.source.empty()) throw Error("--source is required with a .npy input (e.g. --source female,165,60)");
+    if (!c.sequence.empty()) throw Error("--sequence applies to a dataset input, not " + c.in);
+    src = read_npy_sequence(c.in, net.model().mat, net.model().fps);
+    source = parse_body(c.source, "--source");
+    meta.motion_id = "npy";
+  } else {
+    Dataset d = Dataset::open(c.in);
+    if (c.sequence.empty()) throw Error("--sequence is required with a dataset input (see ptnet info " + c.in + ")");
+    meta = d.sequence(c.sequence);
+    src = d.read(c.sequence);
+    info.mat = d.info().mat;
+    info.fps = d.info().fps;
+    source = c.source.empty() ? d.body(meta.body_id) : parse_body(c.source, "--source");
+  }
+  check_body_range(source, "source body");
+  if (!globals().quiet)
+    std::cerr << "transfer: " << src.frames() << " frames, " << sex_name_text(source) << " " << source.height_cm
+              << " cm " << source.weight_kg << " kg -> " << sex_name_text(target) << " " << target.height_cm
+              << " cm " << target.weight_kg << " kg\n";
+  PressureSequence out = net.run(src, source, target);
+  if (npy_out) {
+    write_npy_sequence(c.out, out, c.force);
+    return;
+  }
+  BodySpec body = target;
+  body.id = "target";
+  body.role = "transferred";
+  info.generator = std::string("ptnet ") + PTNET_VERSION + " transfer";
+  info.config_json = nlohmann::json{{"model", c.model}, {"input", c.in}, {"sequence", c.sequence},
+                                    {"stride", c.stride}}.dump();
+  SequenceMeta m = meta;
+  m.name = (meta.motion_id.empty() ? std::string("sequence") : meta.motion_id) + "__target";
+  m.body_id = body.id;
+  m.source = "transfer:" + c.in + (c.sequence.empty() ? "" : ":" + c.sequence);
+  DatasetWriter w(c.out, info, {body}, c.force);
+  out.fps = info.fps;
+  w.add(m, out);
+  w.commit();
+}
+
+void setup(CLI::App& app) {
+  auto opt = std::make_shared<TransferCli>();
+  auto* cmd = app.add_subcommand(
+      "transfer",
+      "Transfer a pressure sequence (>= 30 frames) from its body to a target body with a trained\n"
+      "model: overlapping windows, averaged. Input: a dataset sequence (--in data.h5 --sequence NAME;\n"
+      "the source body is read from the dataset) or a float32 .npy of shape [T, 80, 28] (--source\n"
+      "required). Output: a one-sequence dataset (.h5) or a .npy of the same shape (kPa).");
+  cmd->add_option("--model", opt->model, "Model folder (ptnet train)")->required();
+  cmd->add_option("--in", opt->in, "Dataset file (.h5) or .npy [T, rows, cols] float32 kPa")->required();
+  cmd->add_option("--sequence", opt->sequence, "Sequence name in the dataset");
+  cmd->add_option("--source", opt->source, "Source body SEX,HEIGHT_CM,WEIGHT_KG (default: from the dataset)");
+  cmd->add_option("--target", opt->target, "Target body SEX,HEIGHT_CM,WEIGHT_KG, e.g. male,185,95")->required();
+  cmd->add_option("--out", opt->out, "Output .h5 or .npy")->required();
+  cmd->add_option("--stride", opt->stride, "Frames between window starts (1 = every window)")->capture_default_str();
+  cmd->add_option("--threads", opt->threads, "CPU threads (0 = LibTorch default)");
+  cmd->add_option("--device", opt->device, "cpu | cuda")->capture_default_str();
+  cmd->add_flag("--force", opt->force, "Overwrite the output");
+  cmd->callback([opt]() { run(*opt); });
+}
+
+}  // namespace
+
+PTNET_COMMAND(55, setup);
+
+}  // namespace ptnet::cli

@@ -1,0 +1,69 @@
+// ptnet/model.hpp: PressureTransferNet (the paper's encoder-decoder) in LibTorch.
+//
+//   ptnet::PressureTransferNet net(ptnet::ModelConfig::paper());
+//   auto y = net->forward(x, source_attrs, target_attrs);  // [N, 30, 80, 28] >= 0
+//   ptnet::save_weights(net, "model/model.pt");
+//
+// Dimension legend: N windows, T = window (30) frames as channels, H x W = mat
+// rows x cols (80 x 28), A = 3 attributes (sex, z(height), z(weight)),
+// C1..C3 conv widths, (Hk, Wk) = spatial size after k poolings
+// (80x28 -> 40x14 -> 20x7 -> 10x4, ceil halving).
+//
+// Encoder (the paper's 11 layers): 3 x [Conv2d 3x3, BatchNorm2d, ReLU,
+// MaxPool 2x2 (ceil, indices kept)], flatten, FC -> hidden (128) + ReLU,
+// concat source attributes, FC -> latent (128).
+// Decoder: concat target attributes, FC -> C3 x H3 x W3 + ReLU, then 3 mirrored
+// blocks [MaxUnpool2d with the encoder's indices, ConvTranspose2d 3x3,
+// BatchNorm2d, ReLU]; the last block has no BatchNorm and ends in ReLU so the
+// output (normalised pressure) is non-negative. Arch::skip also concatenates
+// the encoder block's pre-pool feature map before each ConvTranspose2d.
+//
+// Only the model and train stages include this header (it pulls in Torch).
+#pragma once
+
+#include <torch/torch.h>
+
+#include <string>
+
+#include "ptnet/model_config.hpp"
+
+namespace ptnet {
+
+class PressureTransferNetImpl : public torch::nn::Module {
+ public:
+  explicit PressureTransferNetImpl(const ModelConfig& config);
+
+  // x [N, T, H, W] normalised pressure; source, target [N, A] normalised
+  // attributes -> [N, T, H, W] normalised pressure, >= 0.
+  torch::Tensor forward(const torch::Tensor& x, const torch::Tensor& source,
+                        const torch::Tensor& target);
+
+  const ModelConfig& config() const { return config_; }
+
+ private:
+  ModelConfig config_;
+  torch::nn::Conv2d conv1, conv2, conv3;
+  torch::nn::BatchNorm2d bn1, bn2, bn3;
+  torch::nn::MaxPool2d pool;
+  torch::nn::Linear fc_features, fc_latent, fc_decode;
+  torch::nn::ConvTranspose2d deconv3, deconv2, deconv1;
+  torch::nn::BatchNorm2d dbn3, dbn2;
+};
+TORCH_MODULE(PressureTransferNet);
+
+// Trainable parameters of a module.
+std::int64_t parameter_count(const torch::nn::Module& module);
+
+// Weights (parameters and buffers) to/from a file; load checks names and
+// shapes and throws Error naming the file on mismatch.
+void save_weights(const PressureTransferNet& net, const std::string& path);
+void load_weights(PressureTransferNet& net, const std::string& path);
+// The same into/out of an archive (checkpoints); `path` names it in errors.
+void write_weights(const PressureTransferNet& net, torch::serialize::OutputArchive& archive);
+void read_weights(PressureTransferNet& net, torch::serialize::InputArchive& archive,
+                  const std::string& path);
+
+// torch::Device from "cpu" | "cuda" (Error if CUDA is not available).
+torch::Device parse_device(const std::string& text);
+
+}  // namespace ptnet

@@ -1,0 +1,104 @@
+// ptnet/model_config.hpp: the PressureTransferNet hyper-parameters and the
+// model directory's config.json, without any Torch include (the CLI, the
+// transfer API and the evaluation stage read it).
+//
+//   ptnet::ModelConfig c = ptnet::ModelConfig::paper();   // 64/128/256, latent 128
+//   c.channels = {16, 32, 64};                            // a smaller network
+//   ptnet::validate(c);                                   // throws Error if impossible
+//   ptnet::ModelDir dir = ptnet::read_model_dir("model/");  // config.json, validated
+//   auto attrs = dir.norm.attributes(body);               // {sex, z(height), z(weight)}
+//
+// A model directory holds:
+//   config.json    format "ptnet-model", version 1: architecture, window, mat,
+//                  normalisation, training-data digest, options, final metrics
+//   model.pt       the best weights (by validation loss)
+//   checkpoint.pt  the last epoch: weights, optimizer, epoch, RNG, best val,
+//                  patience counter, history (for --resume)
+//   history.csv    epoch,train_loss,val_loss,lr,seconds (one row per epoch)
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ptnet/body_spec.hpp"
+#include "ptnet/pressure.hpp"
+
+namespace ptnet {
+
+inline constexpr int kWindow = 30;        // frames per window (input channels)
+inline constexpr int kAttributes = 3;     // sex, height, weight
+inline constexpr int kHidden = 128;       // width of the FC layer after the encoder's convolutions
+inline constexpr int kLatent = 128;       // width of the latent after the source attributes
+inline constexpr int kPoolLevels = 3;     // encoder blocks (each halves rows and cols, rounding up)
+inline constexpr std::array<int, 3> kPaperChannels{64, 128, 256};  // conv widths, blocks 1-3
+inline constexpr std::array<int, 3> kFastChannels{16, 32, 64};     // conv widths of the fast preset
+inline constexpr const char* kModelFormat = "ptnet-model";
+inline constexpr int kModelVersion = 1;
+
+// faithful: the paper's network (decoder unpools with the encoder's max-pool
+// indices). skip: the same plus U-Net skip connections (each decoder block
+// also sees the encoder block's feature map at its resolution).
+enum class Arch { faithful, skip };
+Arch parse_arch(const std::string& text);  // "faithful" | "skip"; throws Error
+const char* arch_name(Arch arch);
+
+struct ModelConfig {
+  Arch arch = Arch::faithful;
+  int window = kWindow;                    // frames per window = input/output channels
+  int rows = 80;                           // mat rows (H)
+  int cols = 28;                           // mat cols (W)
+  std::array<int, 3> channels = kPaperChannels;  // conv widths of encoder blocks 1-3
+  int hidden = kHidden;                    // FC after the flattened conv features
+  int latent = kLatent;                    // FC after concatenating the source attributes
+  static ModelConfig paper() { return {}; }
+  static ModelConfig fast() {
+    ModelConfig c;
+    c.channels = kFastChannels;
+    return c;
+  }
+};
+
+// Throws Error ("model: channels must be >= 1, found 0") for impossible values.
+void validate(const ModelConfig& config);
+// Rows and cols after `level` poolings (level 0 = input): ceil halving.
+std::array<int, 2> pooled_size(const ModelConfig& config, int level);
+// Closed-form number of trainable parameters (equals the module's count).
+std::int64_t parameter_count(const ModelConfig& config);
+// Multiply-adds x 2 of one forward pass over one window (convolutions + FC).
+double forward_flops(const ModelConfig& config);
+
+// Attribute and pressure normalisation, fitted on the training bodies/frames.
+struct Normalisation {
+  double pressure_scale_kpa = 1;  // network pressure = kPa / scale
+  double height_mean_cm = 170, height_std_cm = 10;
+  double weight_mean_kg = 70, weight_std_kg = 10;
+  // {sex (0 female, 1 male), z-scored height, z-scored weight}
+  std::array<float, 3> attributes(const BodySpec& body) const;
+};
+
+// Everything config.json holds.
+struct ModelDir {
+  std::string path;        // the folder
+  ModelConfig model;
+  Normalisation norm;
+  MatSpec mat;
+  double fps = 30;
+  nlohmann::json data;     // training data: path, digest, counts
+  nlohmann::json options;  // training options
+  nlohmann::json metrics;  // final metrics
+};
+
+nlohmann::json to_json(const ModelConfig& config);
+ModelConfig model_config_from_json(const nlohmann::json& j, const std::string& where);
+nlohmann::json to_json(const ModelDir& dir);
+// Reads and validates DIR/config.json (format, version, fields); throws Error
+// naming the file ("model/config.json: missing field \"normalisation\"").
+ModelDir read_model_dir(const std::string& dir);
+
+// Throws Error if a body's attributes are outside the plausible range
+// (kMinHeightCm..kMaxHeightCm, kMinWeightKg..kMaxWeightKg); `what` names it.
+void check_body_range(const BodySpec& body, const std::string& what);
+
+}  // namespace ptnet

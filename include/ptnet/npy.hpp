@@ -1,0 +1,36 @@
+// ptnet/npy.hpp: a tiny NumPy .npy reader/writer for float32 arrays (the
+// `--in x.npy` / `--out y.npy` form of `ptnet transfer`).
+//
+//   ptnet::NpyArray a = ptnet::read_npy("walk.npy");   // validated: <f4, C order
+//   ptnet::PressureSequence s = ptnet::read_npy_sequence("walk.npy", mat, 30);
+//   ptnet::write_npy_sequence("out.npy", s, /*force=*/false);  // [T, rows, cols]
+//
+// Format: "\x93NUMPY", version 1.0/2.0/3.0, a header dict with descr '<f4',
+// fortran_order False and the shape, then the raw little-endian data.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ptnet/pressure.hpp"
+
+namespace ptnet {
+
+struct NpyArray {
+  std::vector<std::int64_t> shape;
+  std::vector<float> data;  // C order
+};
+
+// Throws Error naming the file: bad magic, dtype other than float32, Fortran
+// order, truncated data.
+NpyArray read_npy(const std::string& path);
+// Atomic write; refuses to overwrite unless force.
+void write_npy(const std::string& path, const NpyArray& array, bool force);
+
+// A [T, rows, cols] float32 array as a sequence on `mat` (rows/cols must
+// match: "x.npy: expected shape [T, 80, 28], found [100, 64, 28]").
+PressureSequence read_npy_sequence(const std::string& path, const MatSpec& mat, double fps);
+void write_npy_sequence(const std::string& path, const PressureSequence& seq, bool force);
+
+}  // namespace ptnet

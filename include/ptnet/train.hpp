@@ -1,0 +1,210 @@
+// ptnet/train.hpp: training PressureTransferNet (no Torch in this header).
+//
+//   auto data = ptnet::open_dataset_source("data.h5");      // or a MemorySource
+//   ptnet::TrainOptions opt = ptnet::TrainOptions::from_preset("fast");
+//   opt.seed = 7;
+//   ptnet::TrainResult r = ptnet::train(*data, "model/", opt);  // config.json, model.pt, ...
+//
+// Protocol (the paper's): train on bodies with role "retargeted" and take-1
+// motions only; "original" bodies and take-2 motions are never read. A pair
+// is the same motion_id on two different bodies (both orders), over the
+// frame range both have. Instances are windows of `window` frames at
+// `stride`, indexed lazily as (pair, start frame). The 9:1 train/validation
+// split is per motion by time: a contiguous block of ~10 % of each motion's
+// window starts (position drawn from the seed) is validation, and training
+// windows that would overlap a validation window are dropped, so no frame is
+// in both sets.
+//
+// Dimension legend: T window frames, H x W mat rows x cols, A = 3 attributes.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ptnet/body_spec.hpp"
+#include "ptnet/data.hpp"
+#include "ptnet/model_config.hpp"
+#include "ptnet/pressure.hpp"
+
+namespace ptnet {
+
+// ------------------------------------------------------------ data sources
+
+// Where training frames come from: the dataset file, or memory (tests).
+class PressureSource {
+ public:
+  virtual ~PressureSource() = default;
+  virtual std::string path() const = 0;  // names the source in messages
+  virtual MatSpec mat() const = 0;
+  virtual double fps() const = 0;
+  virtual const std::vector<BodySpec>& bodies() const = 0;
+  virtual const std::vector<SequenceMeta>& sequences() const = 0;  // frames filled in
+  // Frames [start, start + count) of sequence `name` into out[count, H, W], kPa.
+  virtual void read(const std::string& name, int start, int count, float* out) const = 0;
+
+  const BodySpec& body(const std::string& id) const;          // throws Error if absent
+  const SequenceMeta& sequence(const std::string& name) const;  // throws Error if absent
+  PressureSequence read_all(const std::string& name) const;    // [T, H, W] kPa
+};
+
+// Sequences held in memory (tests, synthetic data).
+class MemorySource : public PressureSource {
+ public:
+  explicit MemorySource(MatSpec mat = {}, double fps = 30, std::string name = "memory");
+  void add_body(const BodySpec& body);
+  void add_sequence(SequenceMeta meta, PressureSequence sequence);  // meta.frames set from data
+
+  std::string path() const override { return name_; }
+  MatSpec mat() const override { return mat_; }
+  double fps() const override { return fps_; }
+  const std::vector<BodySpec>& bodies() const override { return bodies_; }
+  const std::vector<SequenceMeta>& sequences() const override { return metas_; }
+  void read(const std::string& name, int start, int count, float* out) const override;
+
+ private:
+  MatSpec mat_;
+  double fps_;
+  std::string name_;
+  std::vector<BodySpec> bodies_;
+  std::vector<SequenceMeta> metas_;
+  std::map<std::string, PressureSequence> data_;
+};
+
+// The HDF5 dataset file (ptnet::Dataset) as a source. Throws Error if the
+// binary was built without the data stage.
+std::unique_ptr<PressureSource> open_dataset_source(const std::string& path);
+
+// FNV-1a 64 digest (16 hex digits) of the source's metadata: mat, bodies and
+// each sequence's name, body, motion, take and frame count.
+std::string source_digest(const PressureSource& source);
+
+// True for what the paper trains on: role "retargeted" and take 1.
+bool is_training_sequence(const BodySpec& body, const SequenceMeta& meta);
+
+// ------------------------------------------------------------ window index
+
+struct WindowOptions {
+  int window = kWindow;           // frames per window
+  int stride = 1;                 // frames between window starts
+  double val_fraction = 0.1;      // share of each motion's window starts held out
+  std::uint64_t seed = 1;         // places the validation blocks
+};
+
+struct Pair {
+  int source = 0, target = 0;     // indices into PressureSource::sequences()
+  int motion = 0;                 // index into WindowIndex::motions()
+};
+
+struct WindowRef {
+  int pair = 0;                   // index into WindowIndex::pairs()
+  int start = 0;                  // first frame
+};
+
+class WindowIndex {
+ public:
+  // Throws Error ("data.h5: no training pairs: ...") when nothing qualifies.
+  static WindowIndex build(const PressureSource& source, const WindowOptions& options);
+
+  const std::vector<Pair>& pairs() const { return pairs_; }
+  const std::vector<std::string>& motions() const { return motions_; }
+  std::int64_t train_size() const { return train_total_; }
+  std::int64_t val_size() const { return val_total_; }
+  WindowRef train(std::int64_t i) const { return locate(i, train_ranges_, train_cum_); }
+  WindowRef val(std::int64_t i) const { return locate(i, val_ranges_, val_cum_); }
+  const WindowOptions& options() const { return options_; }
+  // Sequences used by any pair (indices into sources().sequences()).
+  std::vector<int> used_sequences() const;
+
+ private:
+  struct Range {
+    int begin = 0, end = 0;  // window starts in [begin, end) (step stride)
+  };
+  using Ranges = std::vector<std::vector<Range>>;  // per motion
+  WindowRef locate(std::int64_t i, const Ranges& ranges, const std::vector<std::int64_t>& cum) const;
+  std::int64_t count(const std::vector<Range>& ranges) const;
+
+  WindowOptions options_;
+  std::vector<Pair> pairs_;
+  std::vector<std::string> motions_;
+  Ranges train_ranges_, val_ranges_;
+  std::vector<std::int64_t> train_cum_, val_cum_;  // per pair, exclusive prefix sums
+  std::int64_t train_total_ = 0, val_total_ = 0;
+};
+
+// Normalisation fitted on the training bodies (z-scores of height and weight)
+// and on training frames (pressure scale = 99.9th percentile of the non-zero
+// cells of up to `max_frames` evenly spaced frames, in kPa).
+Normalisation fit_normalisation(const PressureSource& source, const WindowIndex& index,
+                                int max_frames = 2000);
+
+// Bounded cache of whole sequences (float32 kPa) for batch assembly.
+class SequenceCache {
+ public:
+  SequenceCache(const PressureSource& source, double budget_mb);
+  // Frames [start, start + count) of sequence `seq` into out[count, H, W], kPa.
+  void read(int seq, int start, int count, float* out);
+  double resident_mb() const;
+
+ private:
+  const PressureSource& source_;
+  std::size_t budget_bytes_, used_bytes_ = 0;
+  std::uint64_t clock_ = 0;
+  struct Entry {
+    std::vector<float> kpa;
+    std::uint64_t last_use = 0;
+  };
+  std::map<int, Entry> entries_;
+};
+
+// ---------------------------------------------------------------- training
+
+enum class Loss { mse, mse_force };  // mse_force adds a per-frame total-force term
+
+struct TrainOptions {
+  std::string preset = "paper";     // paper | fast (set by from_preset())
+  ModelConfig model;                // window, rows and cols are taken from the data
+  int epochs = 500;                 // maximum epochs
+  int batch = 1028;                 // windows per optimiser step
+  double lr = 0.01;                 // Adam initial learning rate
+  int lr_halve_every = 20;          // epochs between halvings of the learning rate
+  int patience = 50;                // early stop after this many epochs without val improvement
+  std::uint64_t seed = 1;           // weights, sampling and split
+  int threads = 1;                  // torch::set_num_threads (1 measured fastest, see bench)
+  std::string device = "cpu";       // cpu | cuda
+  int stride = 1;                   // frames between window starts
+  std::int64_t samples_per_epoch = 0;  // training windows drawn per epoch (0 = all)
+  std::int64_t val_samples = 0;     // validation windows, evenly spaced (0 = all)
+  Loss loss = Loss::mse;
+  double force_weight = 0.1;        // weight of the total-force term (Loss::mse_force)
+  double cache_mb = 1024;           // whole-sequence cache budget
+  bool resume = false;              // continue from OUT/checkpoint.pt
+  std::string init;                 // start from this model folder's weights
+  bool force = false;               // overwrite an existing model folder
+  bool quiet = false;               // no progress on stderr
+
+  // "paper": batch 1028, lr 0.01 halved every 20 epochs, 500 epochs,
+  // patience 50, widths 64/128/256, stride 1, every window.
+  // "fast": widths 16/32/64, batch 64, lr 2e-3 halved every 10 epochs,
+  // 20 epochs of 4096 windows at stride 2, 1024 validation windows.
+  static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
+};
+
+struct TrainResult {
+  int epochs_run = 0;         // epochs completed (including resumed ones)
+  int best_epoch = 0;         // 1-based
+  double best_val_loss = 0;   // normalised MSE
+  double first_val_loss = 0;  // after epoch 1
+  double val_rmse_kpa = 0;    // of the best weights on the validation windows
+  bool stopped_early = false;
+  double seconds = 0;
+};
+
+// Trains into `out_dir` (created; an existing non-empty folder needs force or
+// resume). Throws Error on bad input, a non-finite loss (the last good
+// checkpoint is kept), or a dataset without training pairs.
+TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& options);
+
+}  // namespace ptnet

@@ -1,0 +1,142 @@
+// Minimal .npy (NumPy format 1.0-3.0) float32 reader and writer.
+#include "ptnet/npy.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+
+namespace ptnet {
+namespace {
+
+std::string shape_text(const std::vector<std::int64_t>& shape) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? ", " : "") + std::to_string(shape[i]);
+  return s + "]";
+}
+
+// Value text of `key` in a Python dict literal header ("'descr': '<f4', ...").
+std::string dict_value(const std::string& header, const std::string& key, const std::string& path) {
+  auto k = header.find("'" + key + "'");
+  if (k == std::string::npos) throw Error::in(path, "npy header has no '" + key + "'");
+  auto colon = header.find(':', k);
+  if (colon == std::string::npos) throw Error::in(path, "npy header: expected ':' after '" + key + "'");
+  std::size_t b = header.find_first_not_of(' ', colon + 1);
+  if (b == std::string::npos) throw Error::in(path, "npy header truncated");
+  std::size_t e;
+  if (header[b] == '(') e = header.find(')', b) + 1;
+  else if (header[b] == '\'') e = header.find('\'', b + 1) + 1;
+  else e = header.find_first_of(",}", b);
+  if (e == std::string::npos || e == 0) throw Error::in(path, "npy header: bad value for '" + key + "'");
+  return header.substr(b, e - b);
+}
+
+}  // namespace
+
+NpyArray read_npy(const std::string& path) {
+  const std::string bytes = read_text_file(path);
+  if (bytes.size() < 10 || std::memcmp(bytes.data(), "\x93NUMPY", 6) != 0)
+    throw Error::in(path, "not a .npy file (expected the \\x93NUMPY magic)");
+  const int major = static_cast<unsigned char>(bytes[6]);
+  std::size_t header_len, offset;
+  if (major == 1) {
+    header_len = std::size_t(static_cast<unsigned char>(bytes[8])) |
+                 std::size_t(static_cast<unsigned char>(bytes[9])) << 8;
+    offset = 10;
+  } else if (major == 2 || major == 3) {
+    if (bytes.size() < 12) throw Error::in(path, "npy header truncated");
+    header_len = 0;
+    for (int i = 0; i < 4; ++i) header_len |= std::size_t(static_cast<unsigned char>(bytes[8 + i])) << (8 * i);
+    offset = 12;
+  } else {
+    throw Error::in(path, "unsupported npy version " + std::to_string(major));
+  }
+  if (bytes.size() < offset + header_len) throw Error::in(path, "npy header truncated");
+  const std::string header = bytes.substr(offset, header_len);
+  const std::string descr = dict_value(header, "descr", path);
+  if (descr != "'<f4'" && descr != "'|f4'")
+    throw Error::in(path, "expected dtype float32 ('<f4'), found " + descr);
+  if (dict_value(header, "fortran_order", path) != "False")
+    throw Error::in(path, "Fortran-order arrays are not supported (save with C order)");
+  std::string shape = dict_value(header, "shape", path);
+  NpyArray a;
+  std::int64_t count = 1;
+  {
+    std::string inner = shape.substr(1, shape.size() - 2);
+    std::stringstream ss(inner);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      auto b = item.find_first_not_of(' ');
+      if (b == std::string::npos) continue;
+      std::int64_t v;
+      try {
+        std::size_t used;
+        v = std::stoll(item.substr(b), &used);
+      } catch (const std::exception&) {
+        throw Error::in(path, "npy header: bad shape " + shape);
+      }
+      if (v < 0) throw Error::in(path, "npy header: bad shape " + shape);
+      a.shape.push_back(v);
+      count *= v;
+    }
+  }
+  const std::size_t data_at = offset + header_len;
+  const std::size_t need = std::size_t(count) * sizeof(float);
+  if (bytes.size() - data_at != need)
+    throw Error::in(path, "expected " + std::to_string(need) + " data bytes for shape " +
+                              shape_text(a.shape) + ", found " + std::to_string(bytes.size() - data_at));
+  a.data.resize(std::size_t(count));
+  if (count) std::memcpy(a.data.data(), bytes.data() + data_at, need);  // little-endian host
+  return a;
+}
+
+void write_npy(const std::string& path, const NpyArray& a, bool force) {
+  std::int64_t count = 1;
+  for (auto v : a.shape) count *= v;
+  if (std::size_t(count) != a.data.size()) throw Error::in(path, "npy: shape does not match the data size");
+  std::string shape = "(";
+  for (std::size_t i = 0; i < a.shape.size(); ++i) shape += std::to_string(a.shape[i]) + ", ";
+  if (a.shape.size() > 1) shape.erase(shape.size() - 2);
+  else if (a.shape.size() == 1) shape.erase(shape.size() - 1);
+  shape += ")";
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': " + shape + ", }";
+  std::size_t total = 10 + header.size() + 1;
+  header.append((64 - total % 64) % 64, ' ');
+  header += '\n';
+  AtomicFile out(path, force);
+  {
+    std::ofstream f(out.temp_path(), std::ios::binary);
+    if (!f) throw Error::in(path, "cannot write");
+    f.write("\x93NUMPY\x01\x00", 8);
+    const char len[2] = {char(header.size() & 0xff), char(header.size() >> 8)};
+    f.write(len, 2);
+    f << header;
+    f.write(reinterpret_cast<const char*>(a.data.data()), std::streamsize(a.data.size() * sizeof(float)));
+    f.flush();
+    if (!f) throw Error::in(path, "write failed (disk full?)");
+  }
+  out.commit();
+}
+
+PressureSequence read_npy_sequence(const std::string& path, const MatSpec& mat, double fps) {
+  NpyArray a = read_npy(path);
+  if (a.shape.size() != 3 || a.shape[1] != mat.rows || a.shape[2] != mat.cols)
+    throw Error::in(path, "expected shape [T, " + std::to_string(mat.rows) + ", " +
+                              std::to_string(mat.cols) + "], found " + shape_text(a.shape));
+  PressureSequence s;
+  s.mat = mat;
+  s.fps = fps;
+  s.kpa = std::move(a.data);
+  return s;
+}
+
+void write_npy_sequence(const std::string& path, const PressureSequence& seq, bool force) {
+  NpyArray a;
+  a.shape = {seq.frames(), seq.mat.rows, seq.mat.cols};
+  a.data = seq.kpa;
+  write_npy(path, a, force);
+}
+
+}  // namespace ptnet

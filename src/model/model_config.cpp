@@ -1,0 +1,206 @@
+// ModelConfig validation, sizes, parameter/FLOP counts and the model
+// directory's config.json. No Torch here.
+#include "ptnet/model_config.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+
+namespace ptnet {
+using nlohmann::json;
+
+Arch parse_arch(const std::string& text) {
+  if (text == "faithful") return Arch::faithful;
+  if (text == "skip") return Arch::skip;
+  throw Error("--arch: expected faithful or skip, found \"" + text + "\"");
+}
+
+const char* arch_name(Arch arch) { return arch == Arch::skip ? "skip" : "faithful"; }
+
+void validate(const ModelConfig& c) {
+  auto positive = [](const char* what, int v, int max) {
+    if (v < 1 || v > max)
+      throw Error(std::string("model: ") + what + " must be in 1-" + std::to_string(max) +
+                  ", found " + std::to_string(v));
+  };
+  positive("window", c.window, 10000);
+  positive("rows", c.rows, 100000);
+  positive("cols", c.cols, 100000);
+  for (int ch : c.channels) positive("channels", ch, 4096);
+  positive("hidden", c.hidden, 1 << 16);
+  positive("latent", c.latent, 1 << 16);
+}
+
+std::array<int, 2> pooled_size(const ModelConfig& c, int level) {
+  std::array<int, 2> s{c.rows, c.cols};
+  for (int k = 0; k < level; ++k) s = {(s[0] + 1) / 2, (s[1] + 1) / 2};
+  return s;
+}
+
+std::int64_t parameter_count(const ModelConfig& c) {
+  using I = std::int64_t;
+  const I t = c.window, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
+  const I k = 9, skip = c.arch == Arch::skip ? 2 : 1, a = kAttributes;
+  auto s3 = pooled_size(c, 3);
+  const I flat = c3 * s3[0] * s3[1];
+  I n = 0;
+  n += t * c1 * k + c1 + 2 * c1;                  // conv1 + bn1
+  n += c1 * c2 * k + c2 + 2 * c2;                 // conv2 + bn2
+  n += c2 * c3 * k + c3 + 2 * c3;                 // conv3 + bn3
+  n += flat * c.hidden + c.hidden;                // fc_features
+  n += (I(c.hidden) + a) * c.latent + c.latent;   // fc_latent
+  n += (I(c.latent) + a) * flat + flat;           // fc_decode
+  n += skip * c3 * c2 * k + c2 + 2 * c2;          // deconv3 + dbn3
+  n += skip * c2 * c1 * k + c1 + 2 * c1;          // deconv2 + dbn2
+  n += skip * c1 * t * k + t;                     // deconv1
+  return n;
+}
+
+double forward_flops(const ModelConfig& c) {
+  const double t = c.window, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
+  const double k = 9, skip = c.arch == Arch::skip ? 2 : 1, a = kAttributes;
+  auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2), s3 = pooled_size(c, 3);
+  const double p0 = double(s0[0]) * s0[1], p1 = double(s1[0]) * s1[1], p2 = double(s2[0]) * s2[1];
+  const double flat = c3 * s3[0] * s3[1];
+  double macs = t * c1 * k * p0 + c1 * c2 * k * p1 + c2 * c3 * k * p2;                  // encoder
+  macs += flat * c.hidden + (c.hidden + a) * c.latent + (c.latent + a) * flat;           // FCs
+  macs += skip * (c3 * c2 * k * p2 + c2 * c1 * k * p1 + c1 * t * k * p0);               // decoder
+  return 2 * macs;
+}
+
+std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
+  return {body.sex == Sex::male ? 1.0f : 0.0f,
+          float((body.height_cm - height_mean_cm) / height_std_cm),
+          float((body.weight_kg - weight_mean_kg) / weight_std_kg)};
+}
+
+json to_json(const ModelConfig& c) {
+  return json{{"arch", arch_name(c.arch)}, {"window", c.window}, {"rows", c.rows},
+              {"cols", c.cols}, {"channels", c.channels}, {"hidden", c.hidden},
+              {"latent", c.latent}, {"attributes", kAttributes},
+              {"output", "relu"}, {"pooling", "max 2x2 ceil, indices shared with the decoder"},
+              {"parameters", parameter_count(c)}};
+}
+
+namespace {
+
+const json& field(const json& j, const char* key, const std::string& where) {
+  if (!j.is_object() || !j.contains(key))
+    throw Error::in(where, std::string("missing field \"") + key + "\"");
+  return j.at(key);
+}
+
+template <typename T>
+T get(const json& j, const char* key, const std::string& where) {
+  const json& v = field(j, key, where);
+  try {
+    return v.get<T>();
+  } catch (const json::exception&) {
+    throw Error::in(where, std::string("field \"") + key + "\" has the wrong type: " + v.dump());
+  }
+}
+
+}  // namespace
+
+ModelConfig model_config_from_json(const json& j, const std::string& where) {
+  ModelConfig c;
+  c.arch = Arch::faithful;
+  const std::string arch = get<std::string>(j, "arch", where);
+  if (arch == "skip") c.arch = Arch::skip;
+  else if (arch != "faithful") throw Error::in(where, "unknown architecture \"" + arch + "\"");
+  c.window = get<int>(j, "window", where);
+  c.rows = get<int>(j, "rows", where);
+  c.cols = get<int>(j, "cols", where);
+  c.channels = get<std::array<int, 3>>(j, "channels", where);
+  c.hidden = get<int>(j, "hidden", where);
+  c.latent = get<int>(j, "latent", where);
+  try {
+    validate(c);
+  } catch (const Error& e) {
+    throw Error::in(where, e.what());
+  }
+  return c;
+}
+
+json to_json(const ModelDir& d) {
+  return json{{"format", kModelFormat},
+              {"version", kModelVersion},
+              {"architecture", to_json(d.model)},
+              {"window", d.model.window},
+              {"mat", {{"rows", d.mat.rows}, {"cols", d.mat.cols}, {"pitch_m", d.mat.pitch_m}}},
+              {"fps", d.fps},
+              {"normalisation",
+               {{"pressure_scale_kpa", d.norm.pressure_scale_kpa},
+                {"height_mean_cm", d.norm.height_mean_cm},
+                {"height_std_cm", d.norm.height_std_cm},
+                {"weight_mean_kg", d.norm.weight_mean_kg},
+                {"weight_std_kg", d.norm.weight_std_kg},
+                {"sex", "female 0, male 1"}}},
+              {"data", d.data.is_null() ? json::object() : d.data},
+              {"options", d.options.is_null() ? json::object() : d.options},
+              {"metrics", d.metrics.is_null() ? json::object() : d.metrics}};
+}
+
+ModelDir read_model_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) throw Error::in(dir, "no such model folder");
+  if (!fs::is_directory(dir, ec)) throw Error::in(dir, "is not a folder (expected a model folder with config.json)");
+  const std::string path = (fs::path(dir) / "config.json").string();
+  if (!fs::exists(path, ec)) throw Error::in(path, "no such file (is " + dir + " a ptnet model folder?)");
+  json j;
+  try {
+    j = json::parse(read_text_file(path));
+  } catch (const json::parse_error& e) {
+    throw Error::in(path, std::string("not valid JSON (") + e.what() + ")");
+  }
+  if (get<std::string>(j, "format", path) != kModelFormat)
+    throw Error::in(path, std::string("expected format \"") + kModelFormat + "\", found \"" +
+                              j.at("format").get<std::string>() + "\"");
+  int version = get<int>(j, "version", path);
+  if (version != kModelVersion)
+    throw Error::in(path, "expected version " + std::to_string(kModelVersion) + ", found " +
+                              std::to_string(version));
+  ModelDir d;
+  d.path = dir;
+  d.model = model_config_from_json(field(j, "architecture", path), path);
+  const json& mat = field(j, "mat", path);
+  d.mat.rows = get<int>(mat, "rows", path);
+  d.mat.cols = get<int>(mat, "cols", path);
+  d.mat.pitch_m = get<double>(mat, "pitch_m", path);
+  if (d.mat.rows != d.model.rows || d.mat.cols != d.model.cols)
+    throw Error::in(path, "mat size and architecture disagree");
+  d.fps = get<double>(j, "fps", path);
+  const json& n = field(j, "normalisation", path);
+  d.norm.pressure_scale_kpa = get<double>(n, "pressure_scale_kpa", path);
+  d.norm.height_mean_cm = get<double>(n, "height_mean_cm", path);
+  d.norm.height_std_cm = get<double>(n, "height_std_cm", path);
+  d.norm.weight_mean_kg = get<double>(n, "weight_mean_kg", path);
+  d.norm.weight_std_kg = get<double>(n, "weight_std_kg", path);
+  for (double v : {d.norm.pressure_scale_kpa, d.norm.height_std_cm, d.norm.weight_std_kg})
+    if (!(v > 0) || !std::isfinite(v)) throw Error::in(path, "normalisation scales must be > 0");
+  if (j.contains("data")) d.data = j["data"];
+  if (j.contains("options")) d.options = j["options"];
+  if (j.contains("metrics")) d.metrics = j["metrics"];
+  return d;
+}
+
+void check_body_range(const BodySpec& b, const std::string& what) {
+  auto fmt = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  if (!(b.height_cm >= kMinHeightCm && b.height_cm <= kMaxHeightCm))
+    throw Error(what + ": height_cm " + fmt(b.height_cm) + " outside " + fmt(kMinHeightCm) + "-" +
+                fmt(kMaxHeightCm));
+  if (!(b.weight_kg >= kMinWeightKg && b.weight_kg <= kMaxWeightKg))
+    throw Error(what + ": weight_kg " + fmt(b.weight_kg) + " outside " + fmt(kMinWeightKg) + "-" +
+                fmt(kMaxWeightKg));
+  if (b.sex != Sex::female && b.sex != Sex::male) throw Error(what + ": sex must be female or male");
+}
+
+}  // namespace ptnet

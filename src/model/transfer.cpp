@@ -1,0 +1,88 @@
+// Whole-sequence transfer with overlapping windows (Torch).
+//
+// Dimension legend: T frames of the sequence, K = window frames, H x W mat.
+#include "ptnet/transfer.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "ptnet/error.hpp"
+#include "ptnet/model.hpp"
+
+namespace ptnet {
+
+struct Transfer::Impl {
+  ModelDir dir;
+  TransferOptions options;
+  torch::Device device = torch::kCPU;
+  PressureTransferNet net{nullptr};
+};
+
+Transfer::Transfer(const std::string& model_dir, const TransferOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  if (options.stride < 1) throw Error("transfer: stride must be >= 1, found " + std::to_string(options.stride));
+  if (options.batch < 1) throw Error("transfer: batch must be >= 1, found " + std::to_string(options.batch));
+  impl_->options = options;
+  impl_->dir = read_model_dir(model_dir);
+  impl_->device = parse_device(options.device);
+  if (options.threads > 0) torch::set_num_threads(options.threads);
+  impl_->net = PressureTransferNet(impl_->dir.model);
+  load_weights(impl_->net, (std::filesystem::path(model_dir) / "model.pt").string());
+  impl_->net->to(impl_->device);
+  impl_->net->eval();
+}
+
+Transfer::~Transfer() = default;
+Transfer::Transfer(Transfer&&) noexcept = default;
+Transfer& Transfer::operator=(Transfer&&) noexcept = default;
+
+const ModelDir& Transfer::model() const { return impl_->dir; }
+
+PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& source,
+                               const BodySpec& target) const {
+  const ModelDir& d = impl_->dir;
+  const int k = d.model.window, h = d.model.rows, w = d.model.cols;
+  if (src.mat.rows != h || src.mat.cols != w)
+    throw Error::in(d.path, "model is built for a " + std::to_string(h) + " x " + std::to_string(w) +
+                                " mat, the sequence has " + std::to_string(src.mat.rows) + " x " +
+                                std::to_string(src.mat.cols));
+  const int t = src.frames();
+  if (t < k)
+    throw Error("transfer: sequence has " + std::to_string(t) + " frames, the model's window needs at least " +
+                std::to_string(k));
+  check_body_range(source, "source body");
+  check_body_range(target, "target body");
+
+  // Window starts every `stride` frames, plus one ending at the last frame.
+  std::vector<int> starts;
+  for (int s = 0; s + k <= t; s += impl_->options.stride) starts.push_back(s);
+  if (starts.back() != t - k) starts.push_back(t - k);
+
+  const float inv_scale = float(1.0 / d.norm.pressure_scale_kpa);
+  auto sa = d.norm.attributes(source), ta = d.norm.attributes(target);
+  torch::Tensor input = torch::from_blob(const_cast<float*>(src.kpa.data()), {t, h, w}, torch::kFloat32)
+                            .mul(inv_scale);                             // [T, H, W] normalised
+  torch::Tensor sum = torch::zeros({t, h, w}, torch::kFloat32);          // [T, H, W]
+  torch::Tensor cover = torch::zeros({t}, torch::kFloat32);              // windows per frame
+  torch::NoGradGuard no_grad;
+  const int batch = impl_->options.batch;
+  for (std::size_t b = 0; b < starts.size(); b += batch) {
+    const int n = int(std::min<std::size_t>(batch, starts.size() - b));
+    std::vector<torch::Tensor> windows;
+    for (int i = 0; i < n; ++i) windows.push_back(input.narrow(0, starts[b + i], k));
+    auto x = torch::stack(windows).to(impl_->device);                    // [n, K, H, W]
+    auto s_attr = torch::tensor(std::vector<float>(sa.begin(), sa.end())).view({1, 3}).expand({n, 3});
+    auto t_attr = torch::tensor(std::vector<float>(ta.begin(), ta.end())).view({1, 3}).expand({n, 3});
+    auto y = impl_->net->forward(x, s_attr.to(impl_->device), t_attr.to(impl_->device)).cpu();
+    for (int i = 0; i < n; ++i) {
+      sum.narrow(0, starts[b + i], k).add_(y[i]);
+      cover.narrow(0, starts[b + i], k).add_(1.0f);
+    }
+  }
+  auto out_t = (sum / cover.view({t, 1, 1}) * float(d.norm.pressure_scale_kpa)).contiguous();
+  PressureSequence out(src.mat, t, src.fps);
+  std::copy(out_t.data_ptr<float>(), out_t.data_ptr<float>() + out.kpa.size(), out.kpa.begin());
+  return out;
+}
+
+}  // namespace ptnet

@@ -1,0 +1,171 @@
+// Procedural walking: paces back and forth along x on a 1.6 m x 0.56 m mat,
+// turning at its ends in two 90-degree step turns, so a fixed mat senses
+// every frame.
+//
+// Gait timing (Winter; ../shared/anthropometry.md): a step lasts T = 1 /
+// cadence; each foot is in stance 1.2 T (60 % of the 2 T cycle) and swings
+// 0.8 T, so each transition has 0.2 T of double support (10 % of the cycle).
+// A stance starts with the heel (toes up, rolling down about the heel during
+// loading), stays flat, then rises onto the toe tip before toe-off.
+// Footprints are fixed while on the ground, so stance feet never slide; the
+// pelvis follows a smooth path through the footprints (over the stance foot at
+// mid-stance) at the highest height the legs reach.
+#include <algorithm>
+#include <cmath>
+
+#include "generate_internal.hpp"
+
+namespace ptnet::gen {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+using rig::deg;
+
+namespace {
+
+constexpr double kMatHalfLength = 0.78;  // m: feet (heel to toe tip) stay within +/- this x
+constexpr double kStanceFraction = 1.2;  // stance duration / step time (60 % of the cycle)
+constexpr double kSwingFraction = 0.8;   // swing duration / step time
+
+Vector2d heading(double yaw) { return {std::cos(yaw), std::sin(yaw)}; }
+Vector2d rotate(double yaw, const Vector2d& v) {
+  return {std::cos(yaw) * v.x() - std::sin(yaw) * v.y(), std::sin(yaw) * v.x() + std::cos(yaw) * v.y()};
+}
+
+}  // namespace
+
+// Upper body and pelvis orientation from where the feet are: pelvis turns
+// with the forward leg, the chest counter-rotates, and each arm swings
+// opposite to its leg. `swing` [2] = swing activity of each foot.
+void walking_upper_body(const Style& st, double h, double step_len, rig::Controls& c, double base_yaw,
+                        const double swing[2], double arm_gain) {
+  const Vector2d fwd = heading(base_yaw);
+  const double sep =
+      std::clamp(fwd.dot(c.foot[0].ankle.head<2>() - c.foot[1].ankle.head<2>()) / step_len, -1.3, 1.3);
+  c.yaw = base_yaw - deg(4) * sep;
+  c.roll = deg(3) * (swing[0] - swing[1]);
+  c.pitch = deg(4);
+  c.trunk_pitch = st.trunk_lean;
+  c.trunk_yaw = deg(7) * sep;  // chest turns back against the pelvis
+  c.head_pitch = st.head_pitch - 0.5 * st.trunk_lean;
+  c.head_yaw = -0.4 * deg(3) * sep;
+  for (int s = 0; s < 2; ++s) {
+    const double flex = arm_gain * st.arm_swing * (s == 0 ? -sep : sep);
+    c.arm[s].flex = flex;
+    c.arm[s].abd = deg(7);
+    c.arm[s].elbow = st.elbow + 0.6 * std::max(flex, 0.0);
+  }
+}
+
+Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
+  // Per-take variation around the performer's style.
+  Style st = style;
+  st.heel_strike *= rng.uniform(0.85, 1.15);
+  st.toe_off *= rng.uniform(0.9, 1.1);
+  st.trunk_lean += deg(rng.uniform(-1.5, 1.5));
+  st.arm_swing *= rng.uniform(0.8, 1.25);
+  const double h = st.height_m;
+  const double step_time = 1 / (st.cadence * rng.uniform(0.97, 1.03));
+  const double step_len = 0.5 * st.stride * h * rng.uniform(0.95, 1.04);
+  const double half_width = 0.5 * st.step_width * h;
+  const double sway = st.sway * h;
+  const double toe_front = rig::kToeTipPoint.x() * h;
+
+  // Start near one end of the mat, facing the other.
+  double yaw = rng.chance(0.5) ? 0.0 : rig::kPi;
+  Vector2d c(-std::cos(yaw) * rng.uniform(0.3, 0.45), rng.uniform(-0.04, 0.04));
+  int side = rng.chance(0.5) ? 0 : 1;  // first swing foot, 0 = left
+  FootTrack feet[2];
+  auto footprint = [&](int s, const Vector2d& centre, double heading_yaw) {
+    const double sgn = s == 0 ? 1.0 : -1.0;
+    Plant p;
+    p.xy = centre + rotate(heading_yaw, {0, sgn * half_width});
+    p.yaw = heading_yaw + sgn * st.toe_out;
+    return p;
+  };
+  for (int s = 0; s < 2; ++s) feet[s].plants.push_back(footprint(s, c, yaw));
+
+  rig::Spline pelvis;  // (x, y, yaw)
+  pelvis.add(0, {c.x(), c.y(), yaw});
+  double lift = rng.uniform(0.3, 0.6);
+  {
+    const double sgn = side == 0 ? -1.0 : 1.0;  // weight onto the stance foot first
+    const Vector2d p = c + rotate(yaw, {0, sgn * sway});
+    pelvis.add(lift + 0.4 * step_time, {p.x(), p.y(), yaw});
+  }
+  int turn_left = 0, turn_dir = 1;
+  bool after_turn = false;  // the first step out of a turn (or from standing) is short
+  double unwrapped = yaw;
+  for (int k = 0; lift < seconds + 2 * step_time; ++k) {
+    const Vector2d fwd = heading(yaw);
+    bool turning = false;
+    if (turn_left > 0) {
+      turning = true;
+      c += 0.02 * h * fwd;
+      yaw += turn_dir * rig::kPi / 2;
+      unwrapped += turn_dir * rig::kPi / 2;
+      --turn_left;
+      after_turn = true;
+    } else {
+      // Full steps while they fit on the mat, then one shortened step up to
+      // its end (unless tiny), then turn.
+      const double reach = fwd.x() > 0 ? (kMatHalfLength - toe_front) - c.x()
+                                       : c.x() - (-kMatHalfLength + toe_front);
+      const double len = std::min(k == 0 || after_turn ? 0.55 * step_len : step_len, reach);
+      if (k > 0 && len < 0.4 * step_len) {
+        // Step turn: open towards the stepping foot, 2 x 90 degrees.
+        turning = true;
+        turn_dir = side == 0 ? 1 : -1;
+        c += 0.02 * h * fwd;
+        yaw += turn_dir * rig::kPi / 2;
+        unwrapped += turn_dir * rig::kPi / 2;
+        turn_left = 1;
+      } else {
+        c += std::max(len, 0.0) * fwd;
+        after_turn = false;
+        c.y() *= 0.6;  // drift back to the mat's centre line
+      }
+    }
+    yaw = rig::wrap_angle(yaw);
+    Plant p = footprint(side, c, yaw);
+    p.lift = lift;
+    p.land = lift + kSwingFraction * step_time;
+    p.land_pitch = turning ? 0.4 * st.heel_strike : st.heel_strike;
+    p.rocker = 0.15 * kStanceFraction * step_time;
+    p.clearance = 0.02 * h;
+    p.rise = 0.5 * kStanceFraction * step_time;
+    Plant& before = feet[side].plants.back();
+    before.leave_pitch = turning ? 0.5 * st.toe_off : st.toe_off;
+    before.rise = p.rise;
+    feet[side].plants.push_back(p);
+
+    const double sgn = side == 0 ? 1.0 : -1.0;
+    const Vector2d q = c + rotate(yaw, {0, sgn * sway});
+    pelvis.add(p.land + 0.6 * step_time, {q.x(), q.y(), unwrapped});
+    lift = p.land + (kStanceFraction - 1) * step_time;  // double support
+    side = 1 - side;
+  }
+
+  Clip clip;
+  clip.h = h;
+  clip.fps = fps;
+  clip.frames = std::max(1, int(std::lround(seconds * fps)));
+  const double hip_z = h * anthropometry::kDrillisContini.hip;
+  for (int f = 0; f < clip.frames; ++f) {
+    const double t = f / fps;
+    rig::Controls c;
+    double swing[2];
+    for (int s = 0; s < 2; ++s) {
+      c.foot[s] = feet[s].at(t, h);
+      swing[s] = feet[s].swing_activity(t, 0.05);
+    }
+    const Vector3d pv = pelvis(t);
+    c.pelvis = {pv.x(), pv.y(), hip_z};
+    walking_upper_body(st, h, step_len, c, pv.z(), swing, 1.0);
+    clip.controls.push_back(c);
+    clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.015) * h);  // stance knee ~15 deg
+  }
+  return clip;
+}
+
+}  // namespace ptnet::gen

@@ -1,0 +1,456 @@
+// The training loop: batches from the lazy window index, Adam with a step
+// learning-rate schedule, early stopping, atomic checkpoints, exact resume.
+// The only Torch translation unit of the train stage.
+//
+// Dimension legend: N windows in a batch, T window frames, H x W mat cells,
+// A = 3 attributes.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/model.hpp"
+#include "ptnet/train.hpp"
+
+namespace ptnet {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+TrainOptions TrainOptions::from_preset(const std::string& name) {
+  TrainOptions o;
+  o.preset = name;
+  if (name == "paper") return o;  // the defaults are the paper's
+  if (name == "fast") {
+    o.model = ModelConfig::fast();
+    o.epochs = 20;
+    o.batch = 64;
+    o.lr = 2e-3;
+    o.lr_halve_every = 10;
+    o.patience = 10;
+    o.stride = 2;
+    o.samples_per_epoch = 4096;
+    o.val_samples = 1024;
+    return o;
+  }
+  throw Error("--preset: expected paper or fast, found \"" + name + "\"");
+}
+
+namespace {
+
+const char* loss_name(Loss l) { return l == Loss::mse_force ? "mse+force" : "mse"; }
+
+json options_json(const TrainOptions& o) {
+  return json{{"preset", o.preset},        {"epochs", o.epochs},
+              {"batch", o.batch},          {"lr", o.lr},
+              {"lr_halve_every", o.lr_halve_every}, {"patience", o.patience},
+              {"seed", o.seed},            {"threads", o.threads},
+              {"device", o.device},        {"stride", o.stride},
+              {"samples_per_epoch", o.samples_per_epoch}, {"val_samples", o.val_samples},
+              {"loss", loss_name(o.loss)}, {"force_weight", o.force_weight},
+              {"init", o.init},            {"val_fraction", 0.1}};
+}
+
+void check_options(const TrainOptions& o) {
+  auto at_least = [](const char* what, double v, double min) {
+    if (!(v >= min)) {
+      std::ostringstream s;
+      s << "--" << what << ": must be >= " << min << ", found " << v;
+      throw Error(s.str());
+    }
+  };
+  at_least("epochs", o.epochs, 1);
+  at_least("batch", o.batch, 1);
+  at_least("patience", o.patience, 1);
+  at_least("stride", o.stride, 1);
+  at_least("threads", o.threads, 0);
+  at_least("lr-halve-every", o.lr_halve_every, 1);
+  at_least("samples-per-epoch", double(o.samples_per_epoch), 0);
+  at_least("val-samples", double(o.val_samples), 0);
+  if (!(o.lr > 0 && std::isfinite(o.lr))) throw Error("--lr: must be > 0");
+}
+
+double lr_at(const TrainOptions& o, int epoch0) {  // epoch0: 0-based
+  return o.lr * std::pow(0.5, epoch0 / o.lr_halve_every);
+}
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+struct Batch {
+  torch::Tensor x, y, sa, ta;  // [N,T,H,W], [N,T,H,W], [N,A], [N,A]
+};
+
+class Batcher {
+ public:
+  Batcher(const PressureSource& src, const WindowIndex& index, const Normalisation& norm,
+          double cache_mb, torch::Device device)
+      : source_(src), index_(index), cache_(src, cache_mb), device_(device),
+        inv_scale_(float(1.0 / norm.pressure_scale_kpa)) {
+    for (const auto& s : src.sequences()) attrs_.push_back(norm.attributes(src.body(s.body_id)));
+  }
+
+  Batch load(const std::vector<WindowRef>& refs) {
+    const int n = int(refs.size()), t = index_.options().window;
+    const MatSpec m = source_.mat();
+    const std::int64_t per = std::int64_t(t) * m.cells();
+    Batch b;
+    b.x = torch::empty({n, t, m.rows, m.cols}, torch::kFloat32);
+    b.y = torch::empty({n, t, m.rows, m.cols}, torch::kFloat32);
+    b.sa = torch::empty({n, kAttributes}, torch::kFloat32);
+    b.ta = torch::empty({n, kAttributes}, torch::kFloat32);
+    float *x = b.x.data_ptr<float>(), *y = b.y.data_ptr<float>();
+    float *sa = b.sa.data_ptr<float>(), *ta = b.ta.data_ptr<float>();
+    for (int i = 0; i < n; ++i) {
+      const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
+      cache_.read(p.source, refs[i].start, t, x + i * per);
+      cache_.read(p.target, refs[i].start, t, y + i * per);
+      std::copy_n(attrs_[std::size_t(p.source)].data(), kAttributes, sa + i * kAttributes);
+      std::copy_n(attrs_[std::size_t(p.target)].data(), kAttributes, ta + i * kAttributes);
+    }
+    b.x.mul_(inv_scale_);
+    b.y.mul_(inv_scale_);
+    if (device_ != torch::kCPU) {
+      b.x = b.x.to(device_), b.y = b.y.to(device_), b.sa = b.sa.to(device_), b.ta = b.ta.to(device_);
+    }
+    return b;
+  }
+
+  // Windows per source attribute ratio (for the weight-scale baseline).
+  double weight_ratio(const WindowRef& r) const {
+    const auto& seqs = source_.sequences();
+    const Pair& p = index_.pairs()[std::size_t(r.pair)];
+    return source_.body(seqs[p.target].body_id).weight_kg / source_.body(seqs[p.source].body_id).weight_kg;
+  }
+
+ private:
+  const PressureSource& source_;
+  const WindowIndex& index_;
+  SequenceCache cache_;
+  torch::Device device_;
+  float inv_scale_;
+  std::vector<std::array<float, 3>> attrs_;
+};
+
+torch::Tensor loss_fn(const TrainOptions& o, const torch::Tensor& out, const torch::Tensor& truth) {
+  auto loss = torch::mse_loss(out, truth);
+  if (o.loss == Loss::mse_force) {
+    // Relative error of the total force of each frame, squared.
+    auto f_out = out.sum({2, 3}), f_truth = truth.sum({2, 3});
+    loss = loss + o.force_weight * ((f_out - f_truth) / (f_truth + 1.0)).pow(2).mean();
+  }
+  return loss;
+}
+
+struct ValResult {
+  double mse = 0;                       // normalised
+  double rmse_kpa = 0, copy_rmse_kpa = 0, scale_rmse_kpa = 0;
+};
+
+ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const WindowIndex& index,
+                         const TrainOptions& o, double scale_kpa, bool baselines) {
+  const std::int64_t total = index.val_size();
+  const std::int64_t n = o.val_samples > 0 ? std::min(o.val_samples, total) : total;
+  net->eval();
+  torch::NoGradGuard no_grad;
+  double sum = 0, copy_sum = 0, scale_sum = 0;
+  std::int64_t count = 0;
+  std::vector<WindowRef> refs;
+  auto flush = [&]() {
+    if (refs.empty()) return;
+    Batch b = batcher.load(refs);
+    auto out = net->forward(b.x, b.sa, b.ta);
+    sum += torch::mse_loss(out, b.y, torch::Reduction::Sum).item<double>();
+    if (baselines) {
+      copy_sum += torch::mse_loss(b.x, b.y, torch::Reduction::Sum).item<double>();
+      std::vector<float> ratio;
+      for (const auto& r : refs) ratio.push_back(float(batcher.weight_ratio(r)));
+      auto k = torch::tensor(ratio).view({-1, 1, 1, 1}).to(b.x.device());
+      scale_sum += torch::mse_loss(b.x * k, b.y, torch::Reduction::Sum).item<double>();
+    }
+    count += out.numel();
+    refs.clear();
+  };
+  for (std::int64_t i = 0; i < n; ++i) {
+    refs.push_back(index.val(n == total ? i : i * total / n));
+    if (int(refs.size()) == o.batch) flush();
+  }
+  flush();
+  ValResult r;
+  r.mse = sum / double(count);
+  r.rmse_kpa = std::sqrt(r.mse) * scale_kpa;
+  r.copy_rmse_kpa = std::sqrt(copy_sum / double(count)) * scale_kpa;
+  r.scale_rmse_kpa = std::sqrt(scale_sum / double(count)) * scale_kpa;
+  return r;
+}
+
+// Training windows of one epoch: all (shuffled) or `samples_per_epoch` drawn
+// uniformly, from a generator seeded by (seed, epoch) so resume matches.
+std::vector<std::int64_t> epoch_order(const TrainOptions& o, const WindowIndex& index, int epoch0) {
+  std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(epoch0) + 1);
+  const std::int64_t total = index.train_size();
+  std::vector<std::int64_t> order;
+  if (o.samples_per_epoch > 0 && o.samples_per_epoch < total) {
+    std::uniform_int_distribution<std::int64_t> pick(0, total - 1);
+    for (std::int64_t i = 0; i < o.samples_per_epoch; ++i) order.push_back(pick(rng));
+  } else {
+    order.resize(std::size_t(total));
+    for (std::int64_t i = 0; i < total; ++i) order[std::size_t(i)] = i;
+    for (std::int64_t i = total - 1; i > 0; --i) {
+      std::uniform_int_distribution<std::int64_t> pick(0, i);
+      std::swap(order[std::size_t(i)], order[std::size_t(pick(rng))]);
+    }
+  }
+  return order;
+}
+
+struct State {
+  int epoch = 0;  // epochs completed
+  double best_val = INFINITY, first_val = 0;
+  int best_epoch = 0, bad_epochs = 0;
+  std::string history = "epoch,train_loss,val_loss,lr,seconds\n";
+};
+
+void save_checkpoint(const std::string& path, const PressureTransferNet& net, torch::optim::Adam& opt,
+                     const State& s) {
+  torch::serialize::OutputArchive archive, model, optim;
+  write_weights(net, model);
+  opt.save(optim);
+  archive.write("model", model);
+  archive.write("optimizer", optim);
+  archive.write("epoch", torch::tensor(std::int64_t(s.epoch)));
+  archive.write("best_val", torch::tensor(s.best_val, torch::kFloat64));
+  archive.write("first_val", torch::tensor(s.first_val, torch::kFloat64));
+  archive.write("best_epoch", torch::tensor(std::int64_t(s.best_epoch)));
+  archive.write("bad_epochs", torch::tensor(std::int64_t(s.bad_epochs)));
+  archive.write("rng", at::detail::getDefaultCPUGenerator().get_state());
+  archive.write("history", c10::IValue(s.history));
+  AtomicFile out(path, /*force=*/true);
+  archive.save_to(out.temp_path());
+  out.commit();
+}
+
+State load_checkpoint(const std::string& path, PressureTransferNet& net, torch::optim::Adam& opt) {
+  if (!fs::exists(path)) throw Error::in(path, "no checkpoint to resume from");
+  torch::serialize::InputArchive archive, model, optim;
+  State s;
+  try {
+    archive.load_from(path, torch::kCPU);
+    archive.read("model", model);
+    archive.read("optimizer", optim);
+  } catch (const c10::Error&) {
+    throw Error::in(path, "corrupt or truncated checkpoint");
+  }
+  read_weights(net, model, path);
+  opt.load(optim);
+  auto read_t = [&](const char* key) {
+    torch::Tensor t;  // fresh: reading into a defined tensor would set_() it
+    if (!archive.try_read(key, t)) throw Error::in(path, std::string("checkpoint lacks \"") + key + "\"");
+    return t;
+  };
+  s.epoch = int(read_t("epoch").item<std::int64_t>());
+  s.best_val = read_t("best_val").item<double>();
+  s.first_val = read_t("first_val").item<double>();
+  s.best_epoch = int(read_t("best_epoch").item<std::int64_t>());
+  s.bad_epochs = int(read_t("bad_epochs").item<std::int64_t>());
+  at::Generator gen = at::detail::getDefaultCPUGenerator();  // a handle on the default generator
+  gen.set_state(read_t("rng"));
+  c10::IValue h;
+  archive.read("history", h);
+  s.history = h.toStringRef();
+  return s;
+}
+
+void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
+  std::error_code ec;
+  if (o.resume) {
+    if (!fs::is_directory(dir, ec)) throw Error::in(dir, "no model folder to resume");
+    return;
+  }
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec)) throw Error::in(dir, "exists and is not a folder");
+    const bool empty = fs::is_empty(dir, ec);
+    if (!empty && !o.force) throw Error::in(dir, "exists; pass --force to overwrite or --resume to continue");
+    for (const char* f : {"config.json", "model.pt", "checkpoint.pt", "history.csv"})
+      fs::remove(fs::path(dir) / f, ec);
+  } else {
+    fs::path parent = fs::path(dir).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+      throw Error::in(dir, "folder " + parent.string() + " does not exist");
+    if (!fs::create_directory(dir, ec)) throw Error::in(dir, "cannot create folder: " + ec.message());
+  }
+}
+
+}  // namespace
+
+TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& o) {
+  check_options(o);
+  const auto t_start = std::chrono::steady_clock::now();
+  const torch::Device device = parse_device(o.device);
+  if (o.threads > 0) torch::set_num_threads(o.threads);
+  const fs::path dir(out_dir);
+  const std::string config_path = (dir / "config.json").string();
+  const std::string ckpt_path = (dir / "checkpoint.pt").string();
+  const std::string best_path = (dir / "model.pt").string();
+
+  const MatSpec mat = source.mat();
+  const std::string digest = source_digest(source);
+  ModelDir md;
+  md.path = out_dir;
+  md.mat = mat;
+  md.fps = source.fps();
+  md.model = o.model;
+  md.model.rows = mat.rows;
+  md.model.cols = mat.cols;
+
+  ModelDir previous;  // --resume: the folder's config; --init: the other model's
+  if (o.resume) {
+    previous = read_model_dir(out_dir);
+    if (previous.data.value("digest", "") != digest)
+      throw Error::in(config_path, "was trained on other data (digest " + previous.data.value("digest", "?") +
+                                       ", " + source.path() + " has " + digest + "); cannot resume");
+    md.model = previous.model;
+  } else if (!o.init.empty()) {
+    previous = read_model_dir(o.init);
+    md.model = previous.model;  // fine-tuning keeps the architecture
+  }
+  if (md.model.rows != mat.rows || md.model.cols != mat.cols)
+    throw Error::in(source.path(), "mat is " + std::to_string(mat.rows) + " x " + std::to_string(mat.cols) +
+                                       ", the model was built for " + std::to_string(md.model.rows) + " x " +
+                                       std::to_string(md.model.cols));
+  validate(md.model);
+
+  WindowOptions wo;
+  wo.window = md.model.window;
+  wo.stride = o.stride;
+  wo.seed = o.seed;
+  const WindowIndex index = WindowIndex::build(source, wo);
+  if (index.val_size() == 0)
+    throw Error::in(source.path(), "motions too short for a validation split (need >= " +
+                                       std::to_string(3 * wo.window) + " frames)");
+  md.norm = (o.resume || !o.init.empty()) ? previous.norm : fit_normalisation(source, index);
+  md.data = json{{"path", source.path()},          {"digest", digest},
+                 {"pairs", index.pairs().size()},  {"motions", index.motions().size()},
+                 {"train_windows", index.train_size()}, {"val_windows", index.val_size()},
+                 {"protocol", "role=retargeted, take=1; 9:1 per-motion time blocks"}};
+  md.options = options_json(o);
+  prepare_out_dir(out_dir, o);
+
+  torch::manual_seed(o.seed);
+  PressureTransferNet net(md.model);
+  if (!o.init.empty() && !o.resume) load_weights(net, (fs::path(o.init) / "model.pt").string());
+  net->to(device);
+  torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(o.lr));
+
+  State s;
+  if (o.resume) s = load_checkpoint(ckpt_path, net, optimizer);
+  else {
+    write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+    save_checkpoint(ckpt_path, net, optimizer, s);  // epoch 0: the initial weights
+  }
+
+  auto log = [&](const std::string& line) {
+    if (!o.quiet) std::cerr << line << std::endl;
+  };
+  log("train: " + std::to_string(index.pairs().size()) + " pairs, " + std::to_string(index.train_size()) +
+      " training / " + std::to_string(index.val_size()) + " validation windows, " +
+      std::to_string(parameter_count(*net)) + " parameters (" + arch_name(md.model.arch) + " " +
+      std::to_string(md.model.channels[0]) + "/" + std::to_string(md.model.channels[1]) + "/" +
+      std::to_string(md.model.channels[2]) + "), pressure scale " + fmt("%.3g", md.norm.pressure_scale_kpa) +
+      " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
+      (o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
+
+  Batcher batcher(source, index, md.norm, o.cache_mb, device);
+  TrainResult result;
+  const bool finished_before = s.epoch >= o.epochs || s.bad_epochs >= o.patience;
+  for (int e = s.epoch; e < o.epochs && s.bad_epochs < o.patience && !finished_before; ++e) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double lr = lr_at(o, e);
+    for (auto& group : optimizer.param_groups())
+      static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+    net->train();
+    const auto order = epoch_order(o, index, e);
+    double loss_sum = 0;
+    std::int64_t seen = 0;
+    std::vector<WindowRef> refs;
+    for (std::size_t i = 0; i < order.size(); i += std::size_t(o.batch)) {
+      refs.clear();
+      for (std::size_t j = i; j < std::min(order.size(), i + std::size_t(o.batch)); ++j)
+        refs.push_back(index.train(order[j]));
+      Batch b = batcher.load(refs);
+      optimizer.zero_grad();
+      auto loss = loss_fn(o, net->forward(b.x, b.sa, b.ta), b.y);
+      const double l = loss.item<double>();
+      if (!std::isfinite(l))
+        throw Error("training diverged: loss is " + std::string(std::isnan(l) ? "NaN" : "infinite") +
+                    " at epoch " + std::to_string(e + 1) + ", batch " + std::to_string(i / o.batch + 1) +
+                    " (try a lower --lr); the last good checkpoint (epoch " + std::to_string(s.epoch) +
+                    ") is kept in " + ckpt_path);
+      loss.backward();
+      optimizer.step();
+      loss_sum += l * double(refs.size());
+      seen += std::int64_t(refs.size());
+    }
+    const double train_loss = loss_sum / double(seen);
+    const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, false);
+    if (!std::isfinite(v.mse))
+      throw Error("training diverged: validation loss is not finite at epoch " + std::to_string(e + 1) +
+                  "; the last good checkpoint (epoch " + std::to_string(s.epoch) + ") is kept in " + ckpt_path);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    s.epoch = e + 1;
+    if (e == 0) s.first_val = v.mse;
+    if (v.mse < s.best_val) {
+      s.best_val = v.mse;
+      s.best_epoch = e + 1;
+      s.bad_epochs = 0;
+      save_weights(net, best_path);
+    } else {
+      ++s.bad_epochs;
+    }
+    s.history += std::to_string(e + 1) + "," + fmt("%.6g", train_loss) + "," + fmt("%.6g", v.mse) + "," +
+                 fmt("%.6g", lr) + "," + fmt("%.3f", secs) + "\n";
+    save_checkpoint(ckpt_path, net, optimizer, s);
+    write_text_file((dir / "history.csv").string(), s.history, /*force=*/true);
+    char line[160];
+    std::snprintf(line, sizeof line, "[epoch %d/%d] train %.4f val %.4f lr %.1e %.1f s", e + 1, o.epochs,
+                  train_loss, v.mse, lr, secs);
+    log(line);
+  }
+
+  // Final metrics with the best weights on the validation windows.
+  load_weights(net, best_path);
+  net->to(device);
+  const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true);
+  result.epochs_run = s.epoch;
+  result.best_epoch = s.best_epoch;
+  result.best_val_loss = s.best_val;
+  result.first_val_loss = s.first_val;
+  result.val_rmse_kpa = v.rmse_kpa;
+  result.stopped_early = s.bad_epochs >= o.patience;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  md.metrics = json{{"epochs_run", s.epoch},
+                    {"best_epoch", s.best_epoch},
+                    {"best_val_loss", s.best_val},
+                    {"first_val_loss", s.first_val},
+                    {"stopped_early", result.stopped_early},
+                    {"val_rmse_kpa", v.rmse_kpa},
+                    {"val_rmse_copy_kpa", v.copy_rmse_kpa},
+                    {"val_rmse_weight_scale_kpa", v.scale_rmse_kpa},
+                    {"parameters", parameter_count(*net)}};
+  write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "train: best epoch %d, val %.4f, val RMSE %.3f kPa (copy %.3f, weight-scale %.3f), %.1f s",
+                s.best_epoch, s.best_val, v.rmse_kpa, v.copy_rmse_kpa, v.scale_rmse_kpa, result.seconds);
+  log(line);
+  return result;
+}
+
+}  // namespace ptnet

@@ -1,0 +1,142 @@
+// PressureTransferNet: shapes, parameter count, non-negative output, one
+// optimiser step lowers the loss, weights round-trip, config validation.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "ptnet/error.hpp"
+#include "ptnet/model.hpp"
+
+using namespace ptnet;
+
+namespace {
+
+ModelConfig small(Arch arch = Arch::faithful) {
+  ModelConfig c;
+  c.arch = arch;
+  c.channels = {4, 8, 8};
+  c.hidden = 16;
+  c.latent = 16;
+  return c;
+}
+
+}  // namespace
+
+TEST(ModelNet, PooledSizesHalveWithCeiling) {
+  ModelConfig c;
+  EXPECT_EQ(pooled_size(c, 1), (std::array<int, 2>{40, 14}));
+  EXPECT_EQ(pooled_size(c, 2), (std::array<int, 2>{20, 7}));
+  EXPECT_EQ(pooled_size(c, 3), (std::array<int, 2>{10, 4}));
+}
+
+TEST(ModelNet, OutputShapeAndNonNegativeBothArchitectures) {
+  torch::manual_seed(0);
+  for (Arch arch : {Arch::faithful, Arch::skip}) {
+    PressureTransferNet net(small(arch));
+    auto x = torch::rand({3, 30, 80, 28});
+    auto a = torch::randn({3, 3});
+    auto y = net->forward(x, a, a.flip(0));
+    EXPECT_EQ(y.sizes(), (std::vector<int64_t>{3, 30, 80, 28})) << arch_name(arch);
+    EXPECT_GE(y.min().item<float>(), 0.0f);
+  }
+}
+
+TEST(ModelNet, ParameterCountMatchesClosedForm) {
+  for (Arch arch : {Arch::faithful, Arch::skip}) {
+    ModelConfig c = small(arch);
+    PressureTransferNet net(c);
+    EXPECT_EQ(parameter_count(*net), parameter_count(c)) << arch_name(arch);
+  }
+  // The paper's widths (64/128/256, 128, 128): 30x64x9+64 + ... (see model_config.cpp).
+  ModelConfig paper = ModelConfig::paper();
+  PressureTransferNet net(paper);
+  EXPECT_EQ(parameter_count(*net), parameter_count(paper));
+  EXPECT_EQ(parameter_count(paper), 3453214);  // 3.45 M
+}
+
+TEST(ModelNet, OddMatSizesRoundTrip) {
+  ModelConfig c = small();
+  c.rows = 21;
+  c.cols = 9;
+  c.window = 5;
+  PressureTransferNet net(c);
+  auto y = net->forward(torch::rand({2, 5, 21, 9}), torch::zeros({2, 3}), torch::zeros({2, 3}));
+  EXPECT_EQ(y.sizes(), (std::vector<int64_t>{2, 5, 21, 9}));
+}
+
+TEST(ModelNet, WrongInputShapeIsAClearError) {
+  PressureTransferNet net(small());
+  try {
+    net->forward(torch::rand({2, 30, 64, 28}), torch::zeros({2, 3}), torch::zeros({2, 3}));
+    FAIL() << "no error";
+  } catch (const c10::Error& e) {
+    EXPECT_NE(std::string(e.what_without_backtrace()).find("expected input [N, 30, 80, 28]"), std::string::npos);
+  }
+}
+
+TEST(ModelNet, OneAdamStepLowersTheLossOnAFixedBatch) {
+  torch::manual_seed(1);
+  for (Arch arch : {Arch::faithful, Arch::skip}) {
+    PressureTransferNet net(small(arch));
+    net->train();
+    auto x = torch::rand({8, 30, 80, 28});
+    auto target = x * 1.5;
+    auto sa = torch::zeros({8, 3}), ta = torch::ones({8, 3});
+    torch::optim::Adam opt(net->parameters(), torch::optim::AdamOptions(1e-3));
+    auto before = torch::mse_loss(net->forward(x, sa, ta), target);
+    opt.zero_grad();
+    before.backward();
+    opt.step();
+    auto after = torch::mse_loss(net->forward(x, sa, ta), target);
+    EXPECT_LT(after.item<double>(), before.item<double>()) << arch_name(arch);
+  }
+}
+
+TEST(ModelNet, WeightsRoundTripAndMismatchIsAClearError) {
+  auto dir = std::filesystem::temp_directory_path() / "ptnet_model_net_test";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "w.pt").string();
+  torch::manual_seed(2);
+  PressureTransferNet a(small());
+  save_weights(a, path);
+  torch::manual_seed(3);
+  PressureTransferNet b(small());
+  load_weights(b, path);
+  for (const auto& p : a->named_parameters())
+    EXPECT_TRUE(torch::equal(p.value(), b->named_parameters()[p.key()])) << p.key();
+
+  ModelConfig wide = small();
+  wide.channels = {6, 8, 8};
+  PressureTransferNet c(wide);
+  try {
+    load_weights(c, path);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("conv1.weight\" has shape [4, 30, 3, 3], the model expects [6, 30, 3, 3]"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ofstream(path) << "garbage";
+  EXPECT_THROW(load_weights(b, path), Error);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ModelNet, ConfigValidation) {
+  ModelConfig c;
+  c.channels = {0, 8, 8};
+  try {
+    validate(c);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "model: channels must be in 1-4096, found 0");
+  }
+  EXPECT_THROW(parse_arch("unet"), Error);
+  EXPECT_EQ(parse_arch("skip"), Arch::skip);
+}
+
+TEST(ModelNet, FlopsOfThePaperNetwork) {
+  // Encoder convs at 80x28, 40x14, 20x7 + decoder mirror + FCs, x2 for MACs.
+  const double f = forward_flops(ModelConfig::paper());
+  EXPECT_NEAR(f / 1e9, 0.490468, 1e-5);  // GFLOP per window
+}

@@ -1,0 +1,108 @@
+// End to end through the real binary: `ptnet train` on a small synthetic
+// dataset file, then `ptnet transfer` to .npy and .h5, and the CLI's errors.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "ptnet/data.hpp"
+#include "ptnet/npy.hpp"
+#include "ptnet/transfer.hpp"
+#include "train_synthetic.hpp"
+
+using namespace ptnet;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CmdResult {
+  int status;
+  std::string err;
+};
+
+CmdResult run(const std::string& args) {
+  const fs::path err = fs::temp_directory_path() / "ptnet_train_cli_smoke.err";
+  const std::string cmd = std::string(PTNET_BINARY) + " " + args + " 2> " + err.string() + " > /dev/null";
+  int status = std::system(cmd.c_str());
+  std::ifstream f(err);
+  return {WEXITSTATUS(status), std::string(std::istreambuf_iterator<char>(f), {})};
+}
+
+class CliSmoke : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / "ptnet_train_cli_smoke";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    MemorySource src = ptnet::testing::synth_source(4, 2, 90);
+    DatasetInfo info;
+    info.mat = src.mat();
+    info.generator = "test";
+    DatasetWriter w((dir_ / "data.h5").string(), info, src.bodies(), false);
+    for (const auto& m : src.sequences()) w.add(m, src.read_all(m.name));
+    w.commit();
+  }
+  static inline fs::path dir_;
+  std::string data() const { return (dir_ / "data.h5").string(); }
+};
+
+}  // namespace
+
+TEST_F(CliSmoke, TrainThenTransferToNpyAndH5) {
+  const std::string model = (dir_ / "model").string();
+  CmdResult t = run("train --data " + data() + " --out " + model +
+              " --preset fast --channels 4,8,8 --hidden 16 --latent 16 --epochs 2 --batch 16"
+              " --samples-per-epoch 64 --val-samples 32 --threads 1");
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_NE(t.err.find("[epoch 1/2] train "), std::string::npos) << t.err;
+  EXPECT_NE(t.err.find("[epoch 2/2] train "), std::string::npos) << t.err;
+  EXPECT_TRUE(fs::exists(fs::path(model) / "model.pt"));
+
+  // Transfer a dataset sequence (source body read from the file) to .npy.
+  const std::string out_npy = (dir_ / "out.npy").string();
+  CmdResult r = run("transfer --model " + model + " --in " + data() + " --sequence m2__orig --target male,185,95 --out " + out_npy);
+  ASSERT_EQ(r.status, 0) << r.err;
+  NpyArray a = read_npy(out_npy);
+  EXPECT_EQ(a.shape, (std::vector<std::int64_t>{90, 16, 8}));
+  // The same through the API gives the same numbers.
+  Dataset d = Dataset::open(data());
+  Transfer api(model);
+  PressureSequence expect = api.run(d.read("m2__orig"), d.body("orig"), BodySpec{"t", Sex::male, 185, 95});
+  EXPECT_EQ(a.data, expect.kpa);
+
+  // .npy in, .h5 out: a one-sequence dataset on the target body.
+  const std::string out_h5 = (dir_ / "out.h5").string();
+  r = run("transfer --model " + model + " --in " + out_npy + " --source male,185,95 --target female,160,55 --out " + out_h5);
+  ASSERT_EQ(r.status, 0) << r.err;
+  Dataset o = Dataset::open(out_h5);
+  ASSERT_EQ(o.sequences().size(), 1u);
+  EXPECT_EQ(o.sequences()[0].frames, 90);
+  EXPECT_EQ(o.bodies()[0].height_cm, 160);
+
+  // Errors: one line, exit 1.
+  r = run("transfer --model " + model + " --in " + out_npy + " --source male,185,95 --target female,160,55 --out " + out_h5);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: " + out_h5 + ": exists; pass --force to overwrite\n");
+  r = run("transfer --model " + model + " --in " + out_npy + " --target female,160,55 --out " + (dir_ / "x.npy").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: --source is required with a .npy input (e.g. --source female,165,60)\n");
+  r = run("transfer --model " + model + " --in " + out_npy + " --source male,185,95 --target giant,300 --out " +
+          (dir_ / "x.npy").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: --target: expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found \"giant,300\"\n");
+  r = run("transfer --model " + model + " --in " + out_npy + " --source male,185,95 --target male,300,80 --out " +
+          (dir_ / "x.npy").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: target body: height_cm 300 outside 100-230\n");
+  r = run("train --data " + data() + " --out " + model + " --preset fast --epochs 1");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: " + model + ": exists; pass --force to overwrite or --resume to continue\n");
+  r = run("train --data " + data() + " --out " + model + " --preset quick");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: --preset: expected paper or fast, found \"quick\"\n");
+  r = run("train --data " + data());
+  EXPECT_EQ(r.status, 2);  // usage error: --out missing
+  fs::remove_all(dir_);
+}
