@@ -1,0 +1,49 @@
+// ptnet standin: writes the stand-in for real pressure-mat recordings (five
+// subjects on their own bodies, a degraded sensor; docs/har.md). Thin glue
+// over ptnet::har::write_standin.
+#if defined(PTNET_HAR_STANDIN)
+#include <iostream>
+
+#include "command.hpp"
+#include "ptnet/har.hpp"
+
+namespace {
+
+struct StandinCommand {
+  std::string out;
+  bool force = false;
+  ptnet::har::StandinOptions o;
+};
+
+void setup(CLI::App& app) {
+  auto c = std::make_shared<StandinCommand>();
+  CLI::App* s = app.add_subcommand(
+      "standin",
+      "Write the STAND-IN for real recordings (simulated, not real data): N subjects, each its "
+      "own body and procedural performer, every category, a noisier sensor with crosstalk, "
+      "per-cell gain spread and dead cells (input for validate-har)");
+  s->add_option("--out", c->out, "Dataset file to write (.h5)")->required();
+  s->add_option("--subjects", c->o.subjects, "Subjects s1..sN")->capture_default_str()->check(CLI::Range(2, 50));
+  s->add_option("--seconds", c->o.seconds, "Seconds per category clip")
+      ->capture_default_str()
+      ->check(CLI::Range(2.0, 600.0));
+  s->add_option("--takes", c->o.takes, "Clips per category and subject")->capture_default_str()->check(CLI::Range(1, 10));
+  s->add_option("--first-performer", c->o.first_performer, "Procedural performer of s1")->capture_default_str();
+  s->add_option("--crosstalk", c->o.crosstalk, "Crosstalk per neighbour")->capture_default_str()->check(CLI::Range(0.0, 0.2));
+  s->add_option("--noise", c->o.noise_sd_kpa, "Read noise sd (kPa)")->capture_default_str()->check(CLI::Range(0.0, 50.0));
+  s->add_option("--gain-sd", c->o.gain_sd, "Sigma of the per-cell log-normal gain")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  s->add_option("--dead", c->o.dead_fraction, "Fraction of dead cells")->capture_default_str()->check(CLI::Range(0.0, 0.5));
+  s->add_option("--seed", c->o.seed, "Seed (bodies, motions, noise, gain map)")->capture_default_str();
+  s->add_option("--threads", c->o.threads, "Simulation threads (0: all cores)")->capture_default_str();
+  s->add_flag("--force", c->force, "Overwrite an existing file");
+  s->callback([c] {
+    if (!ptnet::cli::globals().quiet)
+      c->o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+    ptnet::har::write_standin(c->out, c->o, c->force);
+  });
+}
+
+}  // namespace
+
+PTNET_COMMAND(69, setup);
+#endif

@@ -1,0 +1,155 @@
+// Real recordings into the dataset format (ptnet/har.hpp, import_recordings).
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/har.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/npy.hpp"
+
+namespace ptnet::har {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string item;
+  while (std::getline(ss, item, ',')) out.push_back(trim(item));
+  if (!line.empty() && line.back() == ',') out.push_back("");
+  return out;
+}
+
+double number(const std::string& text, const std::string& file, long line, const std::string& what) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size()) return v;
+  } catch (const std::exception&) {
+  }
+  throw Error::at(file, line, what, "'" + text + "'");
+}
+
+// [T, rows, cols] kPa from a CSV of one frame per line.
+PressureSequence read_csv_frames(const std::string& path, const MatSpec& mat, double fps) {
+  std::stringstream in(read_text_file(path));
+  std::vector<float> values;
+  std::string text;
+  long line = 0;
+  int frames = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (trim(text).empty()) continue;
+    const auto fields = split(text);
+    if (int(fields.size()) != mat.cells())
+      throw Error::at(path, line, std::to_string(mat.cells()) + " values (" + std::to_string(mat.rows) +
+                                      " x " + std::to_string(mat.cols) + ")",
+                      std::to_string(fields.size()));
+    for (const auto& f : fields) values.push_back(float(number(f, path, line, "a number")));
+    ++frames;
+  }
+  if (frames == 0) throw Error::in(path, "no frames");
+  PressureSequence s(mat, frames, fps);
+  s.kpa = std::move(values);
+  return s;
+}
+
+}  // namespace
+
+void import_recordings(const std::string& manifest, const std::string& out,
+                       const ImportOptions& options, bool force) {
+  namespace fs = std::filesystem;
+  check_output_path(out, force);
+  std::stringstream in(read_text_file(manifest));
+  std::string text;
+  long line = 0;
+  std::vector<std::string> header;
+  while (header.empty() && std::getline(in, text)) {
+    ++line;
+    if (!trim(text).empty()) header = split(text);
+  }
+  const std::vector<std::string> want = {"subject", "sex", "height_cm", "weight_kg", "file"};
+  if (header.size() < 5 || header.size() > 6 ||
+      !std::equal(want.begin(), want.end(), header.begin()) ||
+      (header.size() == 6 && header[5] != "category"))
+    throw Error::at(manifest, line, "header subject,sex,height_cm,weight_kg,file[,category]",
+                    "'" + trim(text) + "'");
+  struct Row {
+    std::string subject, file, category;
+    long line;
+  };
+  std::vector<Row> rows;
+  std::vector<BodySpec> bodies;
+  std::map<std::string, std::size_t> body_of;
+  while (std::getline(in, text)) {
+    ++line;
+    if (trim(text).empty()) continue;
+    const auto f = split(text);
+    if (f.size() != header.size())
+      throw Error::at(manifest, line, std::to_string(header.size()) + " fields", std::to_string(f.size()));
+    BodySpec b;
+    b.id = f[0];
+    if (b.id.empty()) throw Error::at(manifest, line, "a subject id", "an empty field");
+    std::string sex = f[1];
+    for (char& c : sex) c = char(std::tolower((unsigned char)c));
+    if (sex == "female" || sex == "f" || sex == "0") b.sex = Sex::female;
+    else if (sex == "male" || sex == "m" || sex == "1") b.sex = Sex::male;
+    else throw Error::at(manifest, line, "sex female or male", "'" + f[1] + "'");
+    b.height_cm = number(f[2], manifest, line, "height_cm");
+    b.weight_kg = number(f[3], manifest, line, "weight_kg");
+    if (b.height_cm < kMinHeightCm || b.height_cm > kMaxHeightCm)
+      throw Error::at(manifest, line, "height_cm in 100-230", f[2]);
+    if (b.weight_kg < kMinWeightKg || b.weight_kg > kMaxWeightKg)
+      throw Error::at(manifest, line, "weight_kg in 20-250", f[3]);
+    b.role = "original";
+    auto it = body_of.find(b.id);
+    if (it == body_of.end()) {
+      body_of[b.id] = bodies.size();
+      bodies.push_back(b);
+    } else {
+      const BodySpec& a = bodies[it->second];
+      if (a.sex != b.sex || a.height_cm != b.height_cm || a.weight_kg != b.weight_kg)
+        throw Error::at(manifest, line, "the attributes given before for subject " + b.id,
+                        "different ones");
+    }
+    rows.push_back({b.id, f[4], f.size() == 6 ? f[5] : "", line});
+  }
+  if (rows.empty()) throw Error::in(manifest, "no recordings listed");
+
+  DatasetInfo info;
+  info.mat = options.mat;
+  info.fps = options.fps;
+  info.generator = std::string("ptnet ") + PTNET_VERSION + " import";
+  info.config_json = std::string("{\"manifest\": \"") + fs::path(manifest).filename().string() + "\"}";
+  DatasetWriter w(out, info, bodies, force);
+  const fs::path base = fs::path(manifest).parent_path();
+  std::map<std::string, int> names;
+  for (const Row& r : rows) {
+    const fs::path file = fs::path(r.file).is_absolute() ? fs::path(r.file) : base / r.file;
+    const std::string ext = file.extension().string();
+    PressureSequence seq;
+    if (ext == ".npy") seq = read_npy_sequence(file.string(), options.mat, options.fps);
+    else if (ext == ".csv") seq = read_csv_frames(file.string(), options.mat, options.fps);
+    else throw Error::at(manifest, r.line, "a .npy or .csv file", "'" + r.file + "'");
+    SequenceMeta m;
+    m.motion_id = file.stem().string();
+    m.body_id = r.subject;
+    m.name = m.motion_id + "__" + r.subject;
+    if (names[m.name]++) throw Error::at(manifest, r.line, "a new recording", "'" + m.name + "' again");
+    m.performer = r.subject;
+    m.category = r.category;
+    m.take = 1;
+    m.source = file.string();
+    w.add(m, seq);
+  }
+  w.commit();
+}
+
+}  // namespace ptnet::har

@@ -1,0 +1,150 @@
+// The Table-3 text and results.json of a HAR validation (ptnet/har.hpp).
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <sstream>
+
+#include "ptnet/har.hpp"
+
+namespace ptnet::har {
+namespace {
+
+std::string fixed(double v, int digits = 3) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+std::string pad(const std::string& s, std::size_t width) {
+  return s.size() >= width ? s : s + std::string(width - s.size(), ' ');
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
+  return s;
+}
+
+// (the body stage's sex_name() is not needed for this one word)
+const char* sex_word(Sex s) { return s == Sex::male ? "male" : "female"; }
+
+nlohmann::json matrix(const Eigen::MatrixXi& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int i = 0; i < m.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::string format_table(const HarResult& r) {
+  std::ostringstream o;
+  o << "HAR validation of " << r.dataset << ": train subjects " << join(r.train_subjects) << " ("
+    << r.train_windows << " windows), test subjects " << join(r.test_subjects) << " ("
+    << r.test_windows << " windows), stride " << r.stride << ", " << r.runs << " runs\n";
+  o << "Pseudo labels: mean shift on " << r.pca_components << " PCA components ("
+    << fixed(100 * r.pca_explained, 1) << " % of variance), bandwidth " << fixed(r.bandwidth)
+    << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", " << r.clusters << " clusters\n";
+  o << "Synthetic: " << r.synthetic_bodies.size() << " bodies (";
+  for (std::size_t i = 0; i < r.synthetic_bodies.size(); ++i) {
+    const BodySpec& b = r.synthetic_bodies[i];
+    o << (i ? "; " : "") << b.id << " " << sex_word(b.sex) << " " << fixed(b.height_cm, 1) << " cm "
+      << fixed(b.weight_kg, 1) << " kg";
+  }
+  o << ")\n\n";
+  const std::size_t w0 = 32, w = 17;
+  o << pad("Training dataset source", w0);
+  for (const auto& s : r.sources) o << "| " << pad(s.source == "real"        ? "Real"
+                                                   : s.source == "synthetic" ? "Synthetic"
+                                                                             : "Real+Synthetic",
+                                                   w);
+  o << "\n" << std::string(w0, '-');
+  for (std::size_t i = 0; i < r.sources.size(); ++i) o << "+" << std::string(w + 1, '-');
+  o << "\n" << pad("Macro F1 score (pseudo labels)", w0);
+  for (const auto& s : r.sources)
+    o << "| " << pad(fixed(s.macro_f1_mean) + " +- " + fixed(s.macro_f1_std), w);
+  o << "\n" << pad("Accuracy (pseudo labels)", w0);
+  for (const auto& s : r.sources) o << "| " << pad(fixed(s.accuracy_mean), w);
+  if (!r.sources.empty() && !r.sources[0].category_macro_f1.empty()) {
+    o << "\n" << pad("Macro F1 score (categories)", w0);
+    for (const auto& s : r.sources)
+      o << "| " << pad(fixed(s.category_macro_f1_mean) + " +- " + fixed(s.category_macro_f1_std), w);
+  }
+  o << "\n" << pad("Training windows", w0);
+  for (const auto& s : r.sources) o << "| " << pad(std::to_string(s.train_windows), w);
+  o << "\n\nPer-class F1 (pseudo labels, mean over runs):\n";
+  o << pad("cluster (windows)", w0);
+  for (const auto& s : r.sources) o << "| " << pad(s.source, w);
+  o << "\n";
+  for (int c = 0; c < r.clusters; ++c) {
+    std::string label = std::to_string(c) + " (" + std::to_string(r.cluster_sizes[c]) + ")";
+    if (r.cluster_vs_category.rows() == r.clusters && !r.categories.empty()) {
+      Eigen::Index best = 0;
+      r.cluster_vs_category.row(c).maxCoeff(&best);
+      label += " mostly " + r.categories[best];
+    }
+    o << pad(label, w0);
+    for (const auto& s : r.sources) o << "| " << pad(fixed(s.class_f1_mean[c]), w);
+    o << "\n";
+  }
+  if (!r.categories.empty())
+    o << "Cluster purity against categories: " << fixed(r.cluster_purity) << "\n";
+  o << "Time: " << fixed(r.seconds, 1) << " s\n";
+  return o.str();
+}
+
+std::string to_json(const HarResult& r) {
+  using nlohmann::json;
+  json j;
+  j["dataset"] = r.dataset;
+  j["train_subjects"] = r.train_subjects;
+  j["test_subjects"] = r.test_subjects;
+  j["runs"] = r.runs;
+  j["stride"] = r.stride;
+  j["train_windows"] = r.train_windows;
+  j["test_windows"] = r.test_windows;
+  j["features"] = feature_names();
+  j["pca"] = {{"components", r.pca_components}, {"explained_variance", r.pca_explained}};
+  j["mean_shift"] = {{"bandwidth", r.bandwidth},
+                     {"bandwidth_estimated", r.bandwidth_estimated},
+                     {"clusters", r.clusters},
+                     {"cluster_sizes", r.cluster_sizes}};
+  json bodies = json::array();
+  for (const auto& b : r.synthetic_bodies)
+    bodies.push_back({{"id", b.id}, {"sex", sex_word(b.sex)}, {"height_cm", b.height_cm},
+                      {"weight_kg", b.weight_kg}});
+  j["synthetic_bodies"] = bodies;
+  if (!r.categories.empty()) {
+    j["categories"] = r.categories;
+    j["cluster_vs_category"] = matrix(r.cluster_vs_category);
+    j["cluster_purity"] = r.cluster_purity;
+  }
+  json sources = json::array();
+  for (const auto& s : r.sources) {
+    json x;
+    x["source"] = s.source;
+    x["train_windows"] = s.train_windows;
+    x["macro_f1"] = {{"mean", s.macro_f1_mean}, {"std", s.macro_f1_std}, {"runs", s.macro_f1}};
+    x["accuracy"] = {{"mean", s.accuracy_mean}, {"runs", s.accuracy}};
+    x["class_f1_mean"] = s.class_f1_mean;
+    x["confusion"] = matrix(s.confusion);
+    if (!s.category_macro_f1.empty()) {
+      x["category_macro_f1"] = {{"mean", s.category_macro_f1_mean},
+                                {"std", s.category_macro_f1_std},
+                                {"runs", s.category_macro_f1}};
+      x["category_confusion"] = matrix(s.category_confusion);
+    }
+    sources.push_back(x);
+  }
+  j["sources"] = sources;
+  j["seconds"] = r.seconds;
+  j["notes"] =
+      "macro F1 std is the sample standard deviation over runs; confusion matrices are summed "
+      "over runs (rows = true label, columns = predicted)";
+  return j.dump(2) + "\n";
+}
+
+}  // namespace ptnet::har
