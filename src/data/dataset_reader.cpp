@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 constexpr size_t kChunkCacheBytes = 4u << 20;  // per open sequence: ~14 chunks of 32 frames
-constexpr size_t kOpenSequences = 4;           // dataset handles kept open between reads
+constexpr size_t kOpenSequences = 16;          // dataset handles (each with its chunk cache) kept open
 
 std::string shape_text(const std::vector<hsize_t>& dims) {
   std::string s = "[";

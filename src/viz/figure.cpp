@@ -188,7 +188,7 @@ static Image colour_bar(double vmax, int bar_h, int scale, int levels) {
   int label_w = text_width("kPa", scale);
   for (double v : ticks) label_w = std::max(label_w, text_width(tick_label(v, step), scale));
   const int th = text_height(scale);
-  const int top = th + 8;  // "kPa" above the bar
+  const int top = th * 3 / 2 + 8;  // "kPa" above the bar, clear of the top tick label
   Image img(kBarWidth + 6 + label_w + 2, top + bar_h + th / 2 + 2, kPageColour);
   draw_text(img, 0, 0, "kPa", kSubInk, scale);
   for (int y = 0; y < bar_h; ++y) {
@@ -245,7 +245,7 @@ Image render_strip_impl(const std::vector<FigurePanel>& panels, const FigureOpti
       draw_text_centred(img, cx + col_w / 2, label_y, frame_label(frames[j], p.sequence->fps), kSubInk);
       draw_mat(img, cx + (col_w - mat_w) / 2, mat_y, *p.sequence, frames[j], st, opt.cop ? &cop : nullptr);
     }
-    if (i == 0) img.blit(bar, kMargin + mats_w + 24, mat_y - (th + 8));
+    if (i == 0) img.blit(bar, kMargin + mats_w + 24, mat_y - (th * 3 / 2 + 8));
     y += row_h + kRowGap;
   }
   draw_caption(&img, kMargin, height - kMargin - th, mat, s, opt.cop);
@@ -280,7 +280,7 @@ std::vector<Image> render_animation(const std::vector<FigurePanel>& panels, cons
   const int n = int(panels.size());
   const Image bar = colour_bar(st.vmax, mat_h, kText, kGifLevels);
   const int mats_w = n * col_w + (n - 1) * kColumnGap * 2;
-  const int header = th + 12 + 2 * th + 6 + 8;  // frame label, title, subtitle
+  const int header = th + 12 + 2 * th + 6 + 16;  // frame label, title, subtitle
   const int width = kMargin * 2 + mats_w + 24 + bar.width;
   const int height = kMargin * 2 + header + mat_h + 2;
   std::vector<std::vector<std::pair<double, double>>> cops;
@@ -293,7 +293,7 @@ std::vector<Image> render_animation(const std::vector<FigurePanel>& panels, cons
     draw_text_centred(base, cx, kMargin + th + 12, panels[i].title, kInk);
     draw_text_centred(base, cx, kMargin + 2 * th + 16, panels[i].subtitle, kSubInk);
   }
-  base.blit(bar, kMargin + mats_w + 24, mat_y - (th + 8));
+  base.blit(bar, kMargin + mats_w + 24, mat_y - (th * 3 / 2 + 8));
 
   std::vector<Image> images;
   images.reserve(frames.size());
