@@ -21,7 +21,7 @@ build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
-	./$(BUILD)/ptnet demo --out $(DEMO_OUT)
+	./$(BUILD)/ptnet demo --out $(DEMO_OUT) --force
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
