@@ -114,9 +114,12 @@ TEST(CliInfo, OtherProblemsAreOneLineErrors) {
   const RunResult missing = run("info /nonexistent/walk.bvh");
   EXPECT_EQ(missing.status, 1);
   EXPECT_EQ(missing.err, "ptnet: error: /nonexistent/walk.bvh: no such file\n");
-  const RunResult h5 = run("info data.h5");
+  const RunResult h5 = run("info /nonexistent/data.h5");
   EXPECT_EQ(h5.status, 1);
-  EXPECT_EQ(h5.err, "ptnet: error: data.h5: unsupported file type '.h5' (ptnet info reads .bvh)\n");
+  EXPECT_EQ(h5.err, "ptnet: error: /nonexistent/data.h5: no such file\n");
+  const RunResult other = run("info notes.txt");
+  EXPECT_EQ(other.status, 1);
+  EXPECT_NE(other.err.find("unsupported file type '.txt'"), std::string::npos) << other.err;
   const RunResult usage = run("info");
   EXPECT_EQ(usage.status, 2);
   const RunResult units = run("info --units furlong x.bvh");
