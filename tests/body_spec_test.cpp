@@ -1,0 +1,58 @@
+// Body attributes and the bodies CSV (issue 3).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "ptnet/body.hpp"
+#include "ptnet/error.hpp"
+
+namespace ptnet {
+namespace {
+
+TEST(BodySpec, SampledBodiesRoundTripThroughCsv) {
+  const auto bodies = sample_bodies(8, 8, 2, 2, 5);
+  ASSERT_EQ(bodies.size(), 20u);
+  int originals = 0;
+  for (const auto& b : bodies) {
+    EXPECT_NO_THROW(validate(b));
+    originals += b.role == "original";
+  }
+  EXPECT_EQ(originals, 4);
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("ptnet_bodies_" + std::to_string(::getpid()) + ".csv")).string();
+  { std::ofstream(path) << format_bodies_csv(bodies); }
+  const auto back = read_bodies_csv(path);
+  std::filesystem::remove(path);
+  ASSERT_EQ(back.size(), bodies.size());
+  for (std::size_t i = 0; i < back.size(); ++i) {
+    EXPECT_EQ(back[i].id, bodies[i].id);
+    EXPECT_EQ(back[i].sex, bodies[i].sex);
+    EXPECT_DOUBLE_EQ(back[i].height_cm, bodies[i].height_cm);
+    EXPECT_DOUBLE_EQ(back[i].weight_kg, bodies[i].weight_kg);
+    EXPECT_EQ(back[i].role, bodies[i].role);
+  }
+  // Adding originals never changes the retargeted bodies (independent streams).
+  const auto fewer = sample_bodies(8, 8, 0, 0, 5);
+  for (std::size_t i = 0; i < fewer.size(); ++i) EXPECT_DOUBLE_EQ(fewer[i].height_cm, bodies[i].height_cm);
+}
+
+TEST(BodySpec, ImpossibleAttributesAreErrors) {
+  EXPECT_THROW(validate(BodySpec{"b", Sex::male, 260, 70}), Error);
+  EXPECT_THROW(validate(BodySpec{"b", Sex::male, 175, 10}), Error);
+  EXPECT_THROW(parse_sex("other"), Error);
+  const BodySpec b = parse_body_attributes("female,165,60");
+  EXPECT_EQ(b.sex, Sex::female);
+  EXPECT_DOUBLE_EQ(b.height_cm, 165);
+  EXPECT_THROW(parse_body_attributes("female,165"), Error);
+}
+
+TEST(BodySpec, HeavierBodyAtTheSameHeightIsThicker) {
+  const Body light(BodySpec{"a", Sex::female, 165, 50});
+  const Body heavy(BodySpec{"b", Sex::female, 165, 90});
+  EXPECT_GT(heavy.segments()[0].radius_a_m, light.segments()[0].radius_a_m);
+}
+
+}  // namespace
+}  // namespace ptnet
