@@ -116,6 +116,14 @@ struct TestPair {
   std::string source_sequence, target_sequence;
 };
 
+// A test pair read from the dataset, both sequences cut to their common
+// length (same motion, same frame range), with the two bodies.
+struct PairData {
+  PressureSequence source, truth;
+  BodySpec source_body, target_body;
+};
+PairData load_pair(const Dataset& dataset, const TestPair& pair);
+
 // All ordered pairs of two different original bodies on the same motion, in
 // a deterministic order (by motion, then source, then target).
 std::vector<TestPair> test_pairs(const Dataset& dataset);

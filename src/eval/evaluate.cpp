@@ -26,6 +26,18 @@ std::vector<TestPair> test_pairs(const Dataset& dataset) {
   return pairs;
 }
 
+PairData load_pair(const Dataset& dataset, const TestPair& pair) {
+  PairData d;
+  d.source_body = dataset.body(dataset.sequence(pair.source_sequence).body_id);
+  d.target_body = dataset.body(dataset.sequence(pair.target_sequence).body_id);
+  d.source = dataset.read(pair.source_sequence);
+  d.truth = dataset.read(pair.target_sequence);
+  const int frames = std::min(d.source.frames(), d.truth.frames());
+  d.source.kpa.resize(std::size_t(frames) * d.source.mat.cells());
+  d.truth.kpa.resize(std::size_t(frames) * d.truth.mat.cells());
+  return d;
+}
+
 std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& model,
                                     const EvaluateOptions& options) {
   const auto pairs = test_pairs(dataset);
@@ -37,16 +49,12 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
   rows.reserve(pairs.size() * 3);
   int done = 0;
   for (const auto& pair : pairs) {
-    const SequenceMeta& src_meta = dataset.sequence(pair.source_sequence);
-    const SequenceMeta& dst_meta = dataset.sequence(pair.target_sequence);
-    const BodySpec& src_body = dataset.body(src_meta.body_id);
-    const BodySpec& dst_body = dataset.body(dst_meta.body_id);
-    PressureSequence source = dataset.read(pair.source_sequence);
-    PressureSequence truth = dataset.read(pair.target_sequence);
-    // Same motion, same frame range: compare over the common length.
-    const int frames = std::min(source.frames(), truth.frames());
-    source.kpa.resize(std::size_t(frames) * source.mat.cells());
-    truth.kpa.resize(std::size_t(frames) * truth.mat.cells());
+    const PairData data = load_pair(dataset, pair);
+    const PressureSequence& source = data.source;
+    const PressureSequence& truth = data.truth;
+    const BodySpec& src_body = data.source_body;
+    const BodySpec& dst_body = data.target_body;
+    const int frames = truth.frames();
 
     const std::pair<std::string, PressureSequence> predictions[] = {
         {"model", model(source, src_body, dst_body)},
