@@ -16,30 +16,17 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
+#include "rotation.hpp"
 
 namespace ptnet {
 
 using Eigen::Matrix3d;
+using detail::frame_from;
 using Eigen::Vector3d;
 
 namespace {
 
 constexpr double kGroundPercentile = 0.05;  // of per-frame lowest foot points: stance, robust to noise
-
-// Rotation whose y axis is along `lateral` and z axis along `up` made
-// orthogonal to it; identity when degenerate.
-Matrix3d frame_from(const Vector3d& lateral, const Vector3d& up) {
-  if (lateral.norm() < 1e-9) return Matrix3d::Identity();
-  const Vector3d y = lateral.normalized();
-  Vector3d z = up - up.dot(y) * y;
-  if (z.norm() < 1e-9) return Matrix3d::Identity();
-  z.normalize();
-  Matrix3d r;
-  r.col(0) = y.cross(z);
-  r.col(1) = y;
-  r.col(2) = z;
-  return r;
-}
 
 double leg_length(const Pose& p) {
   double sum = 0;

@@ -46,4 +46,20 @@ inline Eigen::Vector3d euler_angles(const Eigen::Matrix3d& R, int i, int j, int 
   return {std::atan2(-s * R(j, k), R(k, k)), b, std::atan2(-s * R(i, j), R(i, i))};
 }
 
+// Rotation whose y axis is along `lateral` and z axis along `up` made
+// orthogonal to it (x = y cross z); identity when degenerate. Used to place
+// the pelvis and chest groups (retargeting) and to write their BVH rotations.
+inline Eigen::Matrix3d frame_from(const Eigen::Vector3d& lateral, const Eigen::Vector3d& up) {
+  if (lateral.norm() < 1e-12) return Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d y = lateral.normalized();
+  Eigen::Vector3d z = up - up.dot(y) * y;
+  if (z.norm() < 1e-12) return Eigen::Matrix3d::Identity();
+  z.normalize();
+  Eigen::Matrix3d r;
+  r.col(0) = y.cross(z);
+  r.col(1) = y;
+  r.col(2) = z;
+  return r;
+}
+
 }  // namespace ptnet::detail

@@ -13,11 +13,13 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
+#include "rotation.hpp"
 #include "rig.hpp"
 
 namespace ptnet {
 
 using Eigen::Matrix3d;
+using detail::frame_from;
 using Eigen::Vector3d;
 
 namespace {
@@ -36,19 +38,6 @@ Matrix3d bvh_to_world() {
 }
 
 Vector3d to_bvh_cm(const Vector3d& world_m) { return 100.0 * (bvh_to_world().transpose() * world_m); }
-
-Matrix3d frame_from(const Vector3d& lateral, const Vector3d& up) {
-  if (lateral.norm() < 1e-12) return Matrix3d::Identity();
-  const Vector3d y = lateral.normalized();
-  Vector3d z = up - up.dot(y) * y;
-  if (z.norm() < 1e-12) return Matrix3d::Identity();
-  z.normalize();
-  Matrix3d r;
-  r.col(0) = y.cross(z);
-  r.col(1) = y;
-  r.col(2) = z;
-  return r;
-}
 
 // R = Rz(a) Rx(b) Ry(c); returns (a, b, c) in degrees.
 Vector3d zxy_degrees(const Matrix3d& r) {
