@@ -13,7 +13,7 @@ namespace ptnet::cli {
 namespace {
 
 struct TrainCli {
-  std::string data, out, preset = "paper", device = "cpu", arch, channels, loss, init;
+  std::string data, out, preset = "paper", device = "cpu", arch, align, channels, loss, init;
   int epochs = 0, batch = 0, micro_batch = 0, patience = 0, threads = -1, stride = 0, hidden = 0, latent = 0;
   int lr_halve_every = 0;
   long long samples_per_epoch = -1, val_samples = -1;
@@ -57,6 +57,7 @@ void run(const TrainCli& c) {
   if (c.val_samples >= 0) o.val_samples = c.val_samples;
   if (c.cache_mb > 0) o.cache_mb = c.cache_mb;
   if (!c.arch.empty()) o.model.arch = parse_arch(c.arch);
+  if (!c.align.empty()) o.model.align = parse_align(c.align);
   if (!c.channels.empty()) o.model.channels = parse_channels(c.channels);
   if (c.hidden) o.model.hidden = c.hidden;
   if (c.latent) o.model.latent = c.latent;
@@ -104,6 +105,9 @@ void setup(CLI::App& app) {
   cmd->add_option("--samples-per-epoch", opt->samples_per_epoch, "Training windows per epoch (0 = all)");
   cmd->add_option("--val-samples", opt->val_samples, "Validation windows (0 = all)");
   cmd->add_option("--arch", opt->arch, "faithful (the paper's) | skip (U-Net skip connections) | residual (skip, learns a correction to the source)");
+  cmd->add_option("--align", opt->align,
+                  "none (the paper's) | zoom (input aligned to the target body: zoomed by the height ratio "
+                  "about the mat centre, scaled by weight over area ratio)");
   cmd->add_option("--channels", opt->channels, "Conv widths of the three blocks, e.g. 64,128,256");
   cmd->add_option("--hidden", opt->hidden, "Width of the FC layer after the convolutions (128)");
   cmd->add_option("--latent", opt->latent, "Latent width (128)");

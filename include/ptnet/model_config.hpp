@@ -46,11 +46,21 @@ inline constexpr int kModelVersion = 1;
 // baseline, training learns what changes from the source body to the target.
 enum class Arch { faithful, skip, residual };
 inline bool has_skips(Arch arch) { return arch != Arch::faithful; }
+
+// What the network sees of the source window. none: the recorded maps (the
+// paper). zoom: the maps aligned to the target body first, zoomed by the
+// height ratio about the mat centre and scaled by the weight ratio over the
+// area ratio (zoom_about_centre in pressure.hpp), so that the network learns
+// only what the body-scale geometry does not explain.
+enum class Align { none, zoom };
+Align parse_align(const std::string& text);  // "none" | "zoom"; throws Error
+const char* align_name(Align align);
 Arch parse_arch(const std::string& text);  // "faithful" | "skip" | "residual"; throws Error
 const char* arch_name(Arch arch);
 
 struct ModelConfig {
   Arch arch = Arch::faithful;
+  Align align = Align::none;
   int window = kWindow;                    // frames per window = input/output channels
   int rows = 80;                           // mat rows (H)
   int cols = 28;                           // mat cols (W)

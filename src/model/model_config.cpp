@@ -19,6 +19,14 @@ Arch parse_arch(const std::string& text) {
   throw Error("--arch: expected faithful, skip or residual, found \"" + text + "\"");
 }
 
+Align parse_align(const std::string& text) {
+  if (text == "none") return Align::none;
+  if (text == "zoom") return Align::zoom;
+  throw Error("--align: expected none or zoom, found \"" + text + "\"");
+}
+
+const char* align_name(Align align) { return align == Align::zoom ? "zoom" : "none"; }
+
 const char* arch_name(Arch arch) {
   switch (arch) {
     case Arch::skip: return "skip";
@@ -85,7 +93,7 @@ std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
 }
 
 json to_json(const ModelConfig& c) {
-  return json{{"arch", arch_name(c.arch)}, {"window", c.window}, {"rows", c.rows},
+  return json{{"arch", arch_name(c.arch)}, {"align", align_name(c.align)}, {"window", c.window}, {"rows", c.rows},
               {"cols", c.cols}, {"channels", c.channels}, {"hidden", c.hidden},
               {"latent", c.latent}, {"attributes", kAttributes},
               {"output", "relu"}, {"pooling", "max 2x2 ceil, indices shared with the decoder"},
@@ -119,6 +127,11 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   if (arch == "skip") c.arch = Arch::skip;
   else if (arch == "residual") c.arch = Arch::residual;
   else if (arch != "faithful") throw Error::in(where, "unknown architecture \"" + arch + "\"");
+  if (j.contains("align")) {
+    const std::string align = get<std::string>(j, "align", where);
+    if (align == "zoom") c.align = Align::zoom;
+    else if (align != "none") throw Error::in(where, "unknown input alignment \"" + align + "\"");
+  }
   c.window = get<int>(j, "window", where);
   c.rows = get<int>(j, "rows", where);
   c.cols = get<int>(j, "cols", where);

@@ -94,19 +94,21 @@ std::string fmt(const char* f, double v) {
 }
 
 struct Batch {
-  torch::Tensor x, y, sa, ta;  // [N,T,H,W], [N,T,H,W], [N,A], [N,A]
+  torch::Tensor x, y, sa, ta;  // network input, truth [N,T,H,W]; attributes [N,A], [N,A]
+  torch::Tensor src;           // the source windows as recorded [N,T,H,W] (= x unless aligned)
 };
 
 class Batcher {
  public:
   Batcher(const PressureSource& src, const WindowIndex& index, const Normalisation& norm,
-          double cache_mb, torch::Device device)
+          double cache_mb, torch::Device device, Align align)
       : source_(src), index_(index), cache_(src, cache_mb), device_(device),
-        inv_scale_(float(1.0 / norm.pressure_scale_kpa)) {
+        inv_scale_(float(1.0 / norm.pressure_scale_kpa)), align_(align) {
     for (const auto& s : src.sequences()) attrs_.push_back(norm.attributes(src.body(s.body_id)));
   }
 
-  Batch load(const std::vector<WindowRef>& refs) {
+  // with_source: also keep the unaligned source windows (for the baselines).
+  Batch load(const std::vector<WindowRef>& refs, bool with_source = false) {
     const int n = int(refs.size()), t = index_.options().window;
     const MatSpec m = source_.mat();
     const std::int64_t per = std::int64_t(t) * m.cells();
@@ -117,17 +119,37 @@ class Batcher {
     b.ta = torch::empty({n, kAttributes}, torch::kFloat32);
     float *x = b.x.data_ptr<float>(), *y = b.y.data_ptr<float>();
     float *sa = b.sa.data_ptr<float>(), *ta = b.ta.data_ptr<float>();
+    std::vector<float> raw(align_ == Align::zoom ? std::size_t(per) : 0);
     for (int i = 0; i < n; ++i) {
       const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
-      cache_.read(p.source, refs[i].start, t, x + i * per);
+      if (align_ == Align::zoom) {
+        // Network input = the source window aligned to the target body.
+        cache_.read(p.source, refs[i].start, t, raw.data());
+        const BodySpec& a = body_of(p.source);
+        const BodySpec& z = body_of(p.target);
+        zoom_frames(raw.data(), x + i * per, t, m.rows, m.cols, body_scale(a.height_cm, z.height_cm),
+                    body_gain(a.height_cm, a.weight_kg, z.height_cm, z.weight_kg));
+      } else {
+        cache_.read(p.source, refs[i].start, t, x + i * per);
+      }
       cache_.read(p.target, refs[i].start, t, y + i * per);
       std::copy_n(attrs_[std::size_t(p.source)].data(), kAttributes, sa + i * kAttributes);
       std::copy_n(attrs_[std::size_t(p.target)].data(), kAttributes, ta + i * kAttributes);
     }
     b.x.mul_(inv_scale_);
     b.y.mul_(inv_scale_);
+    b.src = b.x;
+    if (align_ == Align::zoom && with_source) {
+      b.src = torch::empty_like(b.x);
+      for (int i = 0; i < n; ++i) {
+        const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
+        cache_.read(p.source, refs[i].start, t, b.src.data_ptr<float>() + i * per);
+      }
+      b.src.mul_(inv_scale_);
+    }
     if (device_ != torch::kCPU) {
       b.x = b.x.to(device_), b.y = b.y.to(device_), b.sa = b.sa.to(device_), b.ta = b.ta.to(device_);
+      b.src = b.src.to(device_);
     }
     return b;
   }
@@ -145,7 +167,9 @@ class Batcher {
   SequenceCache cache_;
   torch::Device device_;
   float inv_scale_;
+  Align align_;
   std::vector<std::array<float, 3>> attrs_;
+  const BodySpec& body_of(int seq) const { return source_.body(source_.sequences()[std::size_t(seq)].body_id); }
 };
 
 // Content loss (MSE) on the output ReLU(raw), except that cells whose truth
@@ -169,6 +193,7 @@ constexpr int kCandidates = int(std::size(kThresholdCandidatesKpa));
 struct ValResult {
   double mse = 0;                       // normalised
   double rmse_kpa = 0, copy_rmse_kpa = 0, scale_rmse_kpa = 0, zero_rmse_kpa = 0;
+  double zoom_rmse_kpa = NAN;           // the aligned (zoomed) source, when the model aligns
   // With baselines: binary R^2 (cells > kContactKpa) of the output zeroed
   // below each candidate threshold, and of the copy baseline.
   std::vector<double> binary_r2;        // [kCandidates]
@@ -188,27 +213,29 @@ ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const Windo
   const std::int64_t n = o.val_samples > 0 ? std::min(o.val_samples, total) : total;
   net->eval();
   torch::NoGradGuard no_grad;
-  double sum = 0, copy_sum = 0, scale_sum = 0, zero_sum = 0;
+  double sum = 0, copy_sum = 0, scale_sum = 0, zero_sum = 0, zoom_sum = 0;
+  const bool aligned = net->config().align == Align::zoom;
   double ones = 0, copy_mismatches = 0;
   std::vector<double> mismatches(kCandidates, 0.0);
   std::int64_t count = 0;
   std::vector<WindowRef> refs;
   auto flush = [&]() {
     if (refs.empty()) return;
-    Batch b = batcher.load(refs);
+    Batch b = batcher.load(refs, baselines);
     auto out = net->forward(b.x, b.sa, b.ta);
     sum += torch::mse_loss(out, b.y, torch::Reduction::Sum).item<double>();
     if (baselines) {
-      copy_sum += torch::mse_loss(b.x, b.y, torch::Reduction::Sum).item<double>();
+      copy_sum += torch::mse_loss(b.src, b.y, torch::Reduction::Sum).item<double>();
       zero_sum += b.y.pow(2).sum().item<double>();
+      if (aligned) zoom_sum += torch::mse_loss(b.x, b.y, torch::Reduction::Sum).item<double>();
       std::vector<float> ratio;
       for (const auto& r : refs) ratio.push_back(float(batcher.weight_ratio(r)));
       auto k = torch::tensor(ratio).view({-1, 1, 1, 1}).to(b.x.device());
-      scale_sum += torch::mse_loss(b.x * k, b.y, torch::Reduction::Sum).item<double>();
+      scale_sum += torch::mse_loss(b.src * k, b.y, torch::Reduction::Sum).item<double>();
       const auto contact = b.y * float(scale_kpa) > kContactKpa;     // [N,T,H,W] bool
       const auto out_kpa = out * float(scale_kpa);
       ones += contact.sum().item<double>();
-      copy_mismatches += ((b.x * float(scale_kpa) > kContactKpa) != contact).sum().item<double>();
+      copy_mismatches += ((b.src * float(scale_kpa) > kContactKpa) != contact).sum().item<double>();
       for (int c = 0; c < kCandidates; ++c) {
         const double t = std::max(kThresholdCandidatesKpa[c], kContactKpa);
         mismatches[std::size_t(c)] += ((out_kpa >= t) != contact).sum().item<double>();
@@ -228,6 +255,7 @@ ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const Windo
   r.copy_rmse_kpa = std::sqrt(copy_sum / double(count)) * scale_kpa;
   r.scale_rmse_kpa = std::sqrt(scale_sum / double(count)) * scale_kpa;
   r.zero_rmse_kpa = std::sqrt(zero_sum / double(count)) * scale_kpa;
+  r.zoom_rmse_kpa = aligned ? std::sqrt(zoom_sum / double(count)) * scale_kpa : NAN;
   if (baselines) {
     for (double m : mismatches) r.binary_r2.push_back(binary_r2_from_counts(m, ones, double(count)));
     r.copy_binary_r2 = binary_r2_from_counts(copy_mismatches, ones, double(count));
@@ -411,7 +439,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
       (o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
 
-  Batcher batcher(source, index, md.norm, o.cache_mb, device);
+  Batcher batcher(source, index, md.norm, o.cache_mb, device, md.model.align);
   TrainResult result;
   const bool finished_before = s.epoch >= o.epochs || s.bad_epochs >= o.patience;
   for (int e = s.epoch; e < o.epochs && s.bad_epochs < o.patience && !finished_before; ++e) {
@@ -503,6 +531,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
                     {"val_rmse_copy_kpa", v.copy_rmse_kpa},
                     {"val_rmse_weight_scale_kpa", v.scale_rmse_kpa},
                     {"val_rmse_zero_kpa", v.zero_rmse_kpa},
+                    {"val_rmse_zoom_kpa", std::isfinite(v.zoom_rmse_kpa) ? json(v.zoom_rmse_kpa) : json()},
                     {"val_binary_r2_raw", v.binary_r2.front()},
                     {"val_binary_r2", v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)]},
                     {"val_binary_r2_copy", v.copy_binary_r2},
@@ -512,9 +541,9 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
   char line[320];
   std::snprintf(line, sizeof line,
                 "train: best epoch %d, val %.6f, val RMSE %.3f kPa (copy %.3f, weight-scale %.3f, "
-                "all-zero %.3f); binary R^2 %.3f (raw %.3f, copy %.3f) at contact threshold %.1f kPa; %.1f s",
+                "all-zero %.3f, zoom %.3f); binary R^2 %.3f (raw %.3f, copy %.3f) at contact threshold %.1f kPa; %.1f s",
                 s.best_epoch, s.best_val, v.rmse_kpa, v.copy_rmse_kpa, v.scale_rmse_kpa, v.zero_rmse_kpa,
-                v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)], v.binary_r2.front(),
+                v.zoom_rmse_kpa, v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)], v.binary_r2.front(),
                 v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
   log(line);
   return result;
