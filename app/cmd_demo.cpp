@@ -1,8 +1,9 @@
 // ptnet demo: the embedded default, no external data. Procedural motions
 // (performers x 4 categories x 2 takes) retargeted onto 8 + 8 sampled bodies and
 // 2 + 2 held-out original bodies, simulated on the 80 x 28 mat, written as a
-// dataset with a figure of one motion on two bodies. Every output stays in the
-// folder so each later step (train, evaluate, render) can be rerun on it.
+// dataset with a figure of one motion on two bodies; then the fast preset is
+// trained on it and evaluated (Table 2, report figures). Every output stays in
+// the folder so each later step (train, evaluate, render) can be rerun on it.
 #include <filesystem>
 #include <iostream>
 
@@ -10,9 +11,11 @@
 #include "ptnet/body.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
+#include "ptnet/train.hpp"
 #include "ptnet/viz.hpp"
 
 namespace ptnet::cli {
@@ -23,8 +26,40 @@ struct DemoCli {
   int performers = 5, takes = 2, threads = 0;
   double seconds = 8;
   std::uint64_t seed = 1;
-  bool force = false;
+  int epochs = TrainOptions::from_preset("fast").epochs;
+  bool force = false, no_train = false;
 };
+
+// Steps 2 and 3: the fast preset on the dataset, then the paper's Table 2.
+void train_and_evaluate(const DemoCli& c, const std::string& data_path, const std::string& model_dir,
+                        const std::string& report_dir) {
+  const bool quiet = globals().quiet;
+  if (!quiet) std::cerr << "demo: training (fast preset, --epochs " << c.epochs << ")\n";
+  TrainOptions o = TrainOptions::from_preset("fast");
+  o.epochs = c.epochs;
+  o.seed = c.seed;
+  o.force = c.force;
+  o.quiet = quiet;
+  const auto source = open_dataset_source(data_path);
+  const TrainResult t = train(*source, model_dir, o);
+
+  EvaluationRun r;
+  r.model_dir = model_dir;
+  r.data_path = data_path;
+  r.out_dir = report_dir;
+  r.force = c.force;
+  r.progress = [quiet](int done, int total) {
+    if (!quiet && (done == total || done % 20 == 0))
+      std::cerr << "evaluate: " << done << "/" << total << " pairs\r" << (done == total ? "\n" : "")
+                << std::flush;
+  };
+  const EvaluationResult e = run_evaluation(r);
+  char line[160];
+  std::snprintf(line, sizeof line, "model: %s (%d epochs, best %d, %.0f s)", model_dir.c_str(), t.epochs_run,
+                t.best_epoch, t.seconds);
+  std::cout << "\n" << line << "\n\n" << e.table << "\n" << kPaperTable2Line << "\n";
+  for (const auto& p : e.written) std::cout << "wrote " << p << "\n";
+}
 
 void run(const DemoCli& c) {
   namespace fs = std::filesystem;
@@ -33,7 +68,11 @@ void run(const DemoCli& c) {
   const std::string data_path = (fs::path(c.out) / "data.h5").string();
   const std::string bodies_path = (fs::path(c.out) / "bodies.csv").string();
   const std::string figure_path = (fs::path(c.out) / "walking_two_bodies.png").string();
+  const std::string model_dir = (fs::path(c.out) / "model").string();
+  const std::string report_dir = (fs::path(c.out) / "report").string();
   for (const auto& p : {data_path, bodies_path, figure_path}) check_output_path(p, c.force);
+  if (!c.no_train)
+    for (const auto& p : {model_dir, report_dir}) check_output_path(p, c.force);
 
   const auto bodies = sample_bodies(8, 8, 2, 2, c.seed);
   write_text_file(bodies_path, format_bodies_csv(bodies), c.force);
@@ -100,21 +139,29 @@ void run(const DemoCli& c) {
   fo.cop = true;
   render_figure(d, {motion + "__" + bodies.front().id, motion + "__" + bodies[8].id}, figure_path, fo, c.force);
   std::cout << describe_dataset(d, false) << "\n";
-  std::cout << "wrote " << bodies_path << "\nwrote " << data_path << "\nwrote " << figure_path << "\n"
-            << "next: ptnet train --data " << data_path << " --out " << c.out << "/model --preset fast\n"
-            << "      ptnet evaluate --model " << c.out << "/model --data " << data_path << " --out " << c.out
-            << "/report\n";
+  std::cout << "wrote " << bodies_path << "\nwrote " << data_path << "\nwrote " << figure_path << "\n";
+  if (c.no_train) {
+    std::cout << "next: ptnet train --data " << data_path << " --out " << model_dir << " --preset fast\n"
+              << "      ptnet evaluate --model " << model_dir << " --data " << data_path << " --out "
+              << report_dir << "\n";
+    return;
+  }
+  train_and_evaluate(c, data_path, model_dir, report_dir);
 }
 
 void setup(CLI::App& app) {
   auto c = std::make_shared<DemoCli>();
-  auto* cmd = app.add_subcommand("demo", "The embedded default: procedural motions, bodies, simulation, figure");
+  auto* cmd = app.add_subcommand(
+      "demo", "The embedded default, no external data: procedural motions on sampled bodies, simulation,\n"
+              "training (fast preset), evaluation (the paper's Table 2) and figures, all kept in --out");
   cmd->add_option("--out", c->out, "Output folder")->capture_default_str();
   cmd->add_option("--performers", c->performers, "Procedural performers")->capture_default_str()->check(CLI::Range(1, 50));
   cmd->add_option("--takes", c->takes, "Takes per performer and category")->capture_default_str()->check(CLI::Range(1, 5));
   cmd->add_option("--seconds", c->seconds, "Seconds per clip")->capture_default_str()->check(CLI::Range(2.0, 120.0));
   cmd->add_option("--seed", c->seed, "Seed")->capture_default_str();
   cmd->add_option("--threads", c->threads, "Simulation threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--epochs", c->epochs, "Training epochs (fast preset)")->capture_default_str()->check(CLI::Range(1, 500));
+  cmd->add_flag("--no-train", c->no_train, "Stop after the dataset and its figure");
   cmd->add_flag("--force", c->force, "Overwrite existing outputs");
   cmd->callback([c] { run(*c); });
 }

@@ -8,10 +8,8 @@
 #include <iostream>
 
 #include "command.hpp"
-#include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
-#include "ptnet/transfer.hpp"
 
 namespace ptnet::cli {
 namespace {
@@ -24,33 +22,24 @@ struct EvaluateCli {
 };
 
 void run(const EvaluateCli& c) {
-  if (!(c.threshold_kpa >= 0)) throw Error("--threshold: expected a non-negative kPa value");
-  const Dataset dataset = Dataset::open(c.data);
-  TransferOptions to;
-  to.stride = c.stride;
-  to.raw = c.raw;
-  to.threads = c.threads;
-  const Transfer net(c.model, to);
-  const TransferFn model = [&](const PressureSequence& s, const BodySpec& a, const BodySpec& b) {
-    return net.run(s, a, b);
-  };
-  EvaluateOptions eo;
-  eo.metrics.threshold_kpa = c.threshold_kpa;
+  EvaluationRun r;
+  r.model_dir = c.model;
+  r.data_path = c.data;
+  r.out_dir = c.out;
+  r.threshold_kpa = c.threshold_kpa;
+  r.stride = c.stride;
+  r.threads = c.threads;
+  r.raw = c.raw;
+  r.force = c.force;
   const bool quiet = globals().quiet;
-  eo.progress = [quiet](int done, int total) {
+  r.progress = [quiet](int done, int total) {
     if (!quiet && (done == total || done % 10 == 0))
       std::cerr << "evaluate: " << done << "/" << total << " pairs\r" << (done == total ? "\n" : "")
                 << std::flush;
   };
-  const auto rows = evaluate_pairs(dataset, model, eo);
-  ReportOptions ro;
-  ro.out_dir = c.out;
-  ro.force = c.force;
-  ro.threshold_kpa = c.threshold_kpa;
-  const auto written = write_report(dataset, rows, model, ro);
-  std::cout << format_table(rows) << "\n";
-  std::cout << "Paper (Table 2): seen RMSE 8.88, binary R^2 0.79; unseen RMSE 12.82, binary R^2 0.70\n";
-  for (const auto& p : written) std::cout << "wrote " << p << "\n";
+  const EvaluationResult result = run_evaluation(r);
+  std::cout << result.table << "\n" << kPaperTable2Line << "\n";
+  for (const auto& p : result.written) std::cout << "wrote " << p << "\n";
 }
 
 void setup(CLI::App& app) {

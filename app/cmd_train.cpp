@@ -84,9 +84,10 @@ void setup(CLI::App& app) {
       "Train PressureTransferNet on a dataset (pairs of the same motion on two retargeted bodies,\n"
       "take-1 motions; original bodies and take-2 motions are never used) into a model folder:\n"
       "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr.\n"
-      "Presets: paper = batch 1028, Adam lr 0.01 halved every 20 epochs, 500 epochs, patience 50,\n"
-      "widths 64/128/256, every window at stride 1; fast = widths 16/32/64, batch 64, lr 2e-3 halved\n"
-      "every 5 epochs, 15 epochs of 4096 windows at stride 2 (minutes on a CPU core).\n"
+      "Presets: paper = the paper's network, batch 1028, Adam lr 0.01 halved every 20 epochs, 500 epochs,\n"
+      "patience 50, widths 64/128/256, every window at stride 1; fast = ours: residual network on\n"
+      "body-scale aligned input (--arch residual --align zoom), widths 16/32/64, batch 64, lr 2e-3\n"
+      "halved every 5 epochs, 15 epochs of 4096 windows at stride 2 (minutes on a CPU core).\n"
       "Options left out keep the preset's value.");
   cmd->add_option("--data", opt->data, "Dataset file (HDF5, ptnet simulate)")->required();
   cmd->add_option("--out", opt->out, "Model folder to create")->required();

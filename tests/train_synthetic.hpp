@@ -67,8 +67,11 @@ inline MemorySource synth_source(int retargeted = 6, int motions = 3, int frames
 }
 
 // Options for a few-second training run on the synthetic data.
-inline TrainOptions synth_options(int epochs = 6) {
+// The paper's network (faithful, no alignment) unless told otherwise.
+inline TrainOptions synth_options(int epochs = 6, Arch arch = Arch::faithful, Align align = Align::none) {
   TrainOptions o = TrainOptions::from_preset("fast");
+  o.model.arch = arch;
+  o.model.align = align;
   o.model.channels = {4, 8, 8};
   o.model.hidden = 32;
   o.model.latent = 32;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "ptnet/body_spec.hpp"
+#include "ptnet/model_config.hpp"
 #include "ptnet/pressure.hpp"
 
 namespace ptnet {
@@ -160,5 +161,29 @@ struct ReportOptions {
 // transferred again with `model`. Returns the paths written.
 std::vector<std::string> write_report(const Dataset& dataset, const std::vector<EvalRow>& rows,
                                       const TransferFn& model, const ReportOptions& options);
+
+// ------------------------------------------------- the whole evaluate step
+
+// `ptnet evaluate` as a function (the CLI and `ptnet demo` call it): the
+// trained model in model_dir (ptnet::Transfer) on every test pair of the
+// dataset, the table, and the report in out_dir.
+inline constexpr const char* kPaperTable2Line =
+    "Paper (Table 2): seen RMSE 8.88, binary R^2 0.79; unseen RMSE 12.82, binary R^2 0.70";
+
+struct EvaluationRun {
+  std::string model_dir, data_path, out_dir = "report";
+  double threshold_kpa = kContactKpa;  // binarisation for binary R^2 and IoU
+  int stride = 5;                      // frames between transfer windows
+  int threads = 0;                     // Torch threads (0: default)
+  bool raw = false;                    // skip the model's fitted contact threshold
+  bool force = false;                  // overwrite report files
+  std::function<void(int, int)> progress;  // (pairs done, pairs total)
+};
+struct EvaluationResult {
+  std::vector<EvalRow> rows;
+  std::string table;                   // format_table(rows)
+  std::vector<std::string> written;    // report files
+};
+EvaluationResult run_evaluation(const EvaluationRun& run);
 
 }  // namespace ptnet

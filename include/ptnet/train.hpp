@@ -189,11 +189,13 @@ struct TrainOptions {
   bool force = false;               // overwrite an existing model folder
   bool quiet = false;               // no progress on stderr
 
-  // "paper": batch 1028, lr 0.01 halved every 20 epochs, 500 epochs,
-  // patience 50, widths 64/128/256, stride 1, every window, 2 threads.
-  // "fast": widths 16/32/64, batch 64, lr 2e-3 halved every 5 epochs,
-  // 15 epochs of 4096 windows at stride 2, 1024 validation windows, 1 thread
-  // (~7 min on the embedded dataset on one core of this machine).
+  // "paper": the paper's network (faithful, no alignment), batch 1028, lr
+  // 0.01 halved every 20 epochs, 500 epochs, patience 50, widths
+  // 64/128/256, stride 1, every window, 2 threads.
+  // "fast": ours -- residual network on body-scale aligned input (--arch
+  // residual --align zoom), widths 16/32/64, batch 64, lr 2e-3 halved every 5
+  // epochs, 15 epochs of 4096 windows at stride 2, 1024 validation windows,
+  // 1 thread (~7 min on the embedded dataset on one core of this machine).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
 };
 

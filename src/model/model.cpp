@@ -66,6 +66,13 @@ PressureTransferNetImpl::PressureTransferNetImpl(const ModelConfig& config)
   register_module("deconv1", deconv1);
   register_module("dbn3", dbn3);
   register_module("dbn2", dbn2);
+  if (config.arch == Arch::residual) {
+    // Zero-initialised correction: an untrained residual model is exactly its
+    // (aligned) input, and training starts from that baseline.
+    torch::NoGradGuard no_grad;
+    deconv1->weight.zero_();
+    deconv1->bias.zero_();
+  }
 }
 
 torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const torch::Tensor& source,

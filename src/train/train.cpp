@@ -32,6 +32,8 @@ TrainOptions TrainOptions::from_preset(const std::string& name) {
   }
   if (name == "fast") {
     o.model = ModelConfig::fast();
+    o.model.arch = Arch::residual;  // measured: docs/model.md, docs/results.md
+    o.model.align = Align::zoom;
     o.epochs = 15;
     o.batch = 64;
     o.lr = 2e-3;

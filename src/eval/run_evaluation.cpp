@@ -1,0 +1,39 @@
+// The whole evaluate step: model, test pairs, table, report (eval.hpp).
+#include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
+#include "ptnet/transfer.hpp"
+
+namespace ptnet {
+
+EvaluationResult run_evaluation(const EvaluationRun& run) {
+  if (!(run.threshold_kpa >= 0)) throw Error("--threshold: expected a non-negative kPa value");
+  const Dataset dataset = Dataset::open(run.data_path);
+  TransferOptions to;
+  to.stride = run.stride;
+  to.threads = run.threads;
+  to.raw = run.raw;
+  const Transfer net(run.model_dir, to);
+  if (!(net.model().mat == dataset.info().mat))
+    throw Error::in(run.data_path, "mat is " + std::to_string(dataset.info().mat.rows) + " x " +
+                                       std::to_string(dataset.info().mat.cols) + ", the model was built for " +
+                                       std::to_string(net.model().mat.rows) + " x " +
+                                       std::to_string(net.model().mat.cols));
+  const TransferFn model = [&](const PressureSequence& s, const BodySpec& a, const BodySpec& b) {
+    return net.run(s, a, b);
+  };
+  EvaluateOptions eo;
+  eo.metrics.threshold_kpa = run.threshold_kpa;
+  eo.progress = run.progress;
+  EvaluationResult result;
+  result.rows = evaluate_pairs(dataset, model, eo);
+  ReportOptions ro;
+  ro.out_dir = run.out_dir;
+  ro.force = run.force;
+  ro.threshold_kpa = run.threshold_kpa;
+  result.written = write_report(dataset, result.rows, model, ro);
+  result.table = format_table(result.rows);
+  return result;
+}
+
+}  // namespace ptnet
