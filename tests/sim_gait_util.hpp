@@ -35,15 +35,21 @@ struct Stance {
   int side = 0, first = 0, last = 0;  // frames, inclusive
 };
 
-// Runs of frames in which a foot carries more than `min_n` (at least 2 frames).
-inline std::vector<Stance> stances(const std::vector<FrameTrace>& trace, double min_n) {
+// Runs of frames in which a foot carries more than `min_n`, gaps of up to
+// `gap` frames bridged (weight shifts), at least 2 frames long.
+inline std::vector<Stance> stances(const std::vector<FrameTrace>& trace, double min_n, int gap = 3) {
   std::vector<Stance> out;
   const int T = int(trace.size());
   for (int side = 0; side < 2; ++side)
     for (int t = 0; t < T;) {
       if (!(trace[t].foot[side].force_n > min_n)) { ++t; continue; }
       int e = t;
-      while (e + 1 < T && trace[e + 1].foot[side].force_n > min_n) ++e;
+      for (;;) {
+        int n = e + 1;
+        while (n < T && n <= e + gap + 1 && !(trace[n].foot[side].force_n > min_n)) ++n;
+        if (n < T && n <= e + gap + 1 && trace[n].foot[side].force_n > min_n) e = n;
+        else break;
+      }
       if (e > t) out.push_back({side, t, e});
       t = e + 1;
     }

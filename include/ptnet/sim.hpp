@@ -12,6 +12,11 @@
 //     if it barely moves) laid along the mat's long axis, pointing to row 0
 //     (+x end); the body's left is col 0 (see ptnet/pressure.hpp). `follow`
 //     re-centres the mat on the smoothed pelvis path each frame.
+//     Rigs whose toe joint is not at the metatarsal heads (the ankle -> toe
+//     bone of a planted foot flatter or steeper than the canonical 20.8
+//     degrees) have their feet pitched back to the canonical sole.
+//     The floor is z = 0, corrected for capture drift: the lower envelope of
+//     the planted (slow, level) soles over floor_window_s, bounded to +/- 25 cm.
 //  2. depth from below: the lowest body surface above each of S x S samples
 //     per cell (foot soles, lower surfaces of the segment capsules).
 //  3. contact: a frame has ground contact when some surface lies within the
@@ -28,7 +33,7 @@
 //     of piling onto a few cells. Moments balance too (balance_moments): the
 //     foundation tilts so that the centre of pressure moves towards the
 //     zero-moment point of the centre of mass, x_com - z_com a_xy / (g + a_z)
-//     (within 1.5 standard deviations of the contact): weight shifts from
+//     (within 0.6 standard deviations of the contact): weight shifts from
 //     heel to toe as the body passes over the foot, and between the feet.
 //     Contact off the mat takes its share but is not sensed.
 //  5. sensor: crosstalk blur, saturation, noise, activation threshold,
@@ -67,6 +72,7 @@ struct SimOptions {
   double compliance_m = 0.010;           // contact: some surface within this height of the ground
   double stiffness_kpa_per_mm = 6.0;     // elastic foundation: kPa per mm of penetration (sets the sink depth)
   double max_sink_m = 0.025;             // the sink level stays within this of the lowest surface point
+  double floor_window_s = 1.0;           // capture floor followed over this window (+/- 25 cm; 0: z = 0 is the floor)
   bool balance_moments = true;           // tilt the foundation: centre of pressure towards the CoM's zero-moment point
   int subsamples = 3;                    // S: S x S depth samples per cell
   double com_filter_hz = 6.0;            // low-pass cutoff of the CoM vertical acceleration

@@ -40,8 +40,10 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz)
     const Eigen::Vector3d c = centre_of_mass(body, motion.frames[t]);
     x[t] = c.x(), y[t] = c.y(), z[t] = c.z();
   }
-  const std::vector<double> ax = acceleration(x, fps, com_filter_hz), ay = acceleration(y, fps, com_filter_hz),
-                            az = acceleration(z, fps, com_filter_hz);
+  // Horizontal: half the cutoff; the zero-moment point only steers the
+  // centre of pressure, and capture jitter in a_xy moves it by z / g per m/s^2.
+  const std::vector<double> ax = acceleration(x, fps, 0.5 * com_filter_hz),
+                            ay = acceleration(y, fps, 0.5 * com_filter_hz), az = acceleration(z, fps, com_filter_hz);
   ComTrack out;
   out.load_n.resize(T);
   out.zmp.resize(T);

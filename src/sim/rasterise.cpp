@@ -273,7 +273,7 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
     const Eigen::Matrix2d inv = cov.inverse();
     Eigen::Vector2d shift = *target - centroid;
     const double maha = std::sqrt(std::max(0.0, shift.dot(inv * shift)));
-    constexpr double kMaxShift = 1.5;  // standard deviations of the contact
+    constexpr double kMaxShift = 0.6;  // standard deviations: every contact cell keeps some load
     if (maha > kMaxShift) shift *= kMaxShift / maha;
     tilt = inv * shift;
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,22 @@ struct MatPlacement {
   std::vector<Eigen::Vector2d> centre;  // [T] (all equal for Placement::fixed)
 };
 MatPlacement place_on_mat(const Motion& motion, const SimOptions& options);
+
+// Some rigs put the toe joint well above the metatarsal heads, so a flat
+// foot's ankle -> toe bone is flatter than the canonical 20.8 degrees and the
+// sole would stand on its heel. Per foot (left, right): the canonical rest
+// pitch minus the median of the bone's pitch over planted frames
+// (ankle slower than 0.05 m/s), rad, bounded to +/- 0.5; 0 with < 5 planted frames.
+std::array<double, 2> foot_pitch_offsets(const Motion& motion);
+// Rotates each toe joint about its ankle (down by the offset).
+void correct_foot_pitch(Pose& pose, const std::array<double, 2>& offsets);
+
+// The floor under a motion, frame by frame: the lower envelope over
+// `window_s` (centred) of the sole planes of the feet that barely move
+// (planted), smoothed, bounded to +/- max_m; [T], m. For a grounded motion
+// on a level floor it is ~0; it removes a capture floor that drifts or tilts
+// (a 4 m walk rising 4 cm). window_s 0: off (all 0).
+std::vector<double> floor_track(const Motion& motion, const Body& body, double window_s, double max_m);
 
 // The load of every frame and where the centre of mass asks it to act.
 struct ComTrack {
@@ -51,7 +68,8 @@ class Rasteriser {
   // With `target` (mat coordinates X, Y; m), the foundation tilts so that the
   // centre of pressure moves towards it (the penetration of each cell is
   // weighted by max(0, 1 + g . (r - c)), c the penetration centroid), at most
-  // 1.5 standard deviations of the contact away from c.
+  // 0.6 standard deviations of the contact away from c (so that no contact
+  // cell of a compact footprint is unloaded).
   void distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
                   FrameTrace* trace);
 

@@ -35,6 +35,7 @@ void check_options(const SimOptions& o) {
   if (!(o.compliance_m > 0)) throw Error("simulate: compliance_m must be > 0");
   if (!(o.stiffness_kpa_per_mm > 0)) throw Error("simulate: stiffness_kpa_per_mm must be > 0");
   if (!(o.max_sink_m > 0)) throw Error("simulate: max_sink_m must be > 0");
+  if (!(o.floor_window_s >= 0)) throw Error("simulate: floor_window_s must be >= 0");
   const auto& s = o.sensor;
   if (!(s.crosstalk >= 0 && s.crosstalk < 0.25)) throw Error("simulate: crosstalk must be in [0, 0.25)");
   if (!(s.saturation_kpa > 0) || !(s.noise_sd_kpa >= 0) || !(s.threshold_kpa >= 0) || !(s.quantum_kpa >= 0))
@@ -47,10 +48,20 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
   return simulate(motion, body, options, nullptr);
 }
 
-PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
+PressureSequence simulate(const Motion& input, const Body& body, const SimOptions& options,
                           std::vector<FrameTrace>* trace) {
   check_options(options);
-  if (motion.size() == 0) throw Error("simulate: motion '" + motion.name + "' has no frames");
+  if (input.size() == 0) throw Error("simulate: motion '" + input.name + "' has no frames");
+  // Feet whose toe joint sits off the canonical sole (rig conventions) are
+  // pitched back to it; canonical motions are used as they are.
+  const std::array<double, 2> pitch = detail::foot_pitch_offsets(input);
+  Motion corrected;
+  const bool correct = std::abs(pitch[0]) > 0.03 || std::abs(pitch[1]) > 0.03;  // ~2 degrees
+  if (correct) {
+    corrected = input;
+    for (Pose& p : corrected.frames) detail::correct_foot_pitch(p, pitch);
+  }
+  const Motion& motion = correct ? corrected : input;
   const int T = motion.size();
   const MatSpec& mat = options.mat;
   PressureSequence seq(mat, T, motion.fps);
@@ -58,6 +69,7 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
 
   const detail::MatPlacement place = detail::place_on_mat(motion, options);
   const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
+  const std::vector<double> floor = detail::floor_track(motion, body, options.floor_window_s, 0.25);
   detail::Rasteriser raster(mat, options.subsamples, options.compliance_m, options.max_sink_m);
   std::vector<float> scratch(mat.cells());
   std::uint64_t rng = options.seed ^ 0x5bd1e9955bd1e995ULL;
@@ -69,7 +81,7 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
     const Eigen::Vector2d& c = place.centre[t];
     for (int j = 0; j < kJointCount; ++j) {
       const Eigen::Vector2d d = pose[j].head<2>() - c;
-      local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z());
+      local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor[std::size_t(t)]);
     }
     float* frame = seq.frame(t);
     raster.rasterise(body, pose_body(body, local), trace != nullptr);
