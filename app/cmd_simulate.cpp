@@ -5,6 +5,8 @@
 //   ptnet simulate --embedded --performers 2 --takes 1 --seconds 4 --bodies bodies.csv --out demo.h5
 //
 // Options and sensor defaults: docs/simulate.md.
+#include <unistd.h>
+
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -80,12 +82,13 @@ void run(const SimulateCli& c) {
   if (!quiet)
     std::cerr << "simulate: " << clips.size() << " clips x " << bodies.size() << " bodies = "
               << clips.size() * bodies.size() << " sequences\n";
-  o.progress = [quiet](const std::string& phase, int done, int total) {
+  const bool tty = ::isatty(2) != 0;  // a terminal: one updating line; a log: a line per 10 %
+  o.progress = [quiet, tty](const std::string& phase, int done, int total) {
     if (quiet) return;
-    const int step = std::max(1, total / 20);
+    const int step = std::max(1, total / (tty ? 100 : 10));
     if (done % step == 0 || done == total)
       std::cerr << phase << ": " << done << "/" << total << (phase == "load" ? " clips" : " sequences")
-                << (done == total ? "\n" : "\r") << std::flush;
+                << (done == total || !tty ? "\n" : "\r") << std::flush;
   };
   const SimulateDatasetSummary r = simulate_dataset(clips, bodies, c.out, o);
   if (!quiet) {

@@ -75,7 +75,7 @@ struct SimOptions {
   double floor_window_s = 1.0;           // capture floor followed over this window (+/- 25 cm; 0: z = 0 is the floor)
   bool balance_moments = true;           // tilt the foundation: centre of pressure towards the CoM's zero-moment point
   int subsamples = 3;                    // S: S x S depth samples per cell
-  double com_filter_hz = 6.0;            // low-pass cutoff of the CoM vertical acceleration
+  double com_filter_hz = 4.0;            // low-pass cutoff of the CoM acceleration (Hz; Winter: 4-6 Hz for gait kinematics)
   SensorModel sensor;                    // see above
   std::uint64_t seed = 0;                // noise stream
 };

@@ -68,8 +68,9 @@ std::string default_config(const std::vector<ClipSource>& clips, const std::vect
 
 }  // namespace
 
-SimulateDatasetSummary simulate_dataset(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
-                                        const std::string& out_path, const SimulateDatasetOptions& options) {
+namespace {
+SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
+                           const std::string& out_path, const SimulateDatasetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (clips.empty()) throw Error("simulate: no clips to simulate");
   if (bodies.empty()) throw Error("simulate: no bodies to simulate on");
@@ -146,6 +147,20 @@ SimulateDatasetSummary simulate_dataset(const std::vector<ClipSource>& clips, co
   summary.sequences = total;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
+}
+}  // namespace
+
+SimulateDatasetSummary simulate_dataset(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
+                                        const std::string& out_path, const SimulateDatasetOptions& options) {
+  try {
+    return run(clips, bodies, out_path, options);
+  } catch (const Error& e) {
+    // Errors are one line (HDF5's error stacks may hold line breaks).
+    std::string text = e.what();
+    for (char& ch : text)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    throw Error(text);
+  }
 }
 
 }  // namespace ptnet
