@@ -66,13 +66,13 @@ void BM_SimulateWalk_real(benchmark::State& state) {
     if (m.name == "005_01") return run_frames(state, m);
   state.SkipWithError("../shared/mocap not found: no real walking clip");
 }
-BENCHMARK(BM_SimulateWalk_real)->Name("BM_SimulateWalk/real")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SimulateWalk_real)->Name("BM_SimulateWalk/real")->Unit(benchmark::kMillisecond);
 
 void BM_SimulateWalk_procedural(benchmark::State& state) {
   static const ptnet::Motion m = procedural_walk();
   run_frames(state, m);
 }
-BENCHMARK(BM_SimulateWalk_procedural)->Name("BM_SimulateWalk/procedural")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SimulateWalk_procedural)->Name("BM_SimulateWalk/procedural")->Unit(benchmark::kMillisecond);
 
 void BM_SimulateAllClips(benchmark::State& state) {
   if (mocap().empty()) return state.SkipWithError("../shared/mocap not found");
@@ -86,7 +86,7 @@ void BM_SimulateAllClips(benchmark::State& state) {
     }
   state.counters["frames_per_s"] = benchmark::Counter(double(frames), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_SimulateAllClips)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SimulateAllClips)->Unit(benchmark::kMillisecond);
 
 void BM_SimulateMany(benchmark::State& state) {
   const int threads = int(state.range(0));
