@@ -63,8 +63,8 @@ std::vector<ClipRow> read_clips_csv(const std::string& path);
 std::string category_from_name(const std::string& path);
 
 // A category guessed from the motion itself: "walking" when the pelvis
-// travels steadily (mean horizontal speed 0.4-2.5 m/s with net travel
-// >= 1 m), else "freestyle".
+// travels steadily (mean horizontal speed 0.4-2.5 m/s over a path of
+// >= 1.5 m), else "freestyle".
 std::string category_from_motion(const Motion& motion);
 
 // The clips of BVH `inputs` (files, or folders searched recursively for
@@ -98,8 +98,9 @@ struct SimulateDatasetOptions {
   bool force = false;             // overwrite an existing output
   std::string generator = "ptnet simulate";
   std::string config_json;        // "" : built from the options
-  // Called after each stage of work: (phase, done, total); phase "load" for
-  // clips, "simulate" for sequences. From the calling thread.
+  // Called as work completes: (phase, done, total); phase "load" for clips,
+  // "simulate" for sequences. Calls are serialised but may come from worker
+  // threads.
   std::function<void(const std::string& phase, int done, int total)> progress;
 };
 

@@ -133,9 +133,8 @@ std::string category_from_motion(const Motion& motion) {
   double path = 0;
   for (int t = 1; t < T; ++t)
     path += (motion.frames[t][kPelvis] - motion.frames[t - 1][kPelvis]).head<2>().norm();
-  const double net = (motion.frames.back()[kPelvis] - motion.frames.front()[kPelvis]).head<2>().norm();
   const double speed = path / ((T - 1) / motion.fps);
-  return speed >= 0.4 && speed <= 2.5 && net >= 1.0 ? "walking" : "freestyle";
+  return speed >= 0.4 && speed <= 2.5 && path >= 1.5 ? "walking" : "freestyle";
 }
 
 std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs, const std::string& clips_csv,
