@@ -14,7 +14,7 @@
 #include "ptnet/eval.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"
-#include "ptnet/sim.hpp"
+#include "ptnet/simulate_dataset.hpp"
 #include "ptnet/train.hpp"
 #include "ptnet/viz.hpp"
 
@@ -76,63 +76,22 @@ void run(const DemoCli& c) {
 
   const auto bodies = sample_bodies(8, 8, 2, 2, c.seed);
   write_text_file(bodies_path, format_bodies_csv(bodies), c.force);
-  std::vector<Body> built;
-  for (const auto& b : bodies) built.emplace_back(b);
 
-  struct Clip { Motion motion; SequenceMeta meta; };
-  std::vector<Clip> clips;
-  for (int p = 1; p <= c.performers; ++p)
-    for (Category cat : kCategories)
-      for (int take = 1; take <= c.takes; ++take) {
-        GenerateOptions g;
-        g.category = cat;
-        g.performer = p;
-        g.take = take;
-        g.seconds = c.seconds;
-        g.seed = c.seed;
-        Clip clip{generate_motion(g), {}};
-        clip.meta.motion_id = "p" + std::to_string(p) + "_" + category_name(cat) + "_t" + std::to_string(take);
-        clip.meta.performer = "P" + std::to_string(p);
-        clip.meta.category = category_name(cat);
-        clip.meta.take = take;
-        clip.meta.source = "procedural:" + clip.meta.motion_id;
-        clips.push_back(std::move(clip));
-      }
+  const std::vector<ClipSource> clips = embedded_clips(c.performers, c.takes, c.seconds, c.seed);
   if (!quiet) std::cerr << "demo: " << clips.size() << " procedural clips on " << bodies.size() << " bodies\n";
-
-  std::vector<Motion> retargeted;
-  std::vector<SimJob> jobs;
-  std::vector<SequenceMeta> metas;
-  retargeted.reserve(clips.size() * bodies.size());
-  for (const auto& clip : clips)
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-      retargeted.push_back(retarget(clip.motion, bodies[b].height_cm));
-      SequenceMeta m = clip.meta;
-      m.body_id = bodies[b].id;
-      m.name = m.motion_id + "__" + m.body_id;
-      metas.push_back(m);
-    }
-  SimOptions so;
+  SimulateDatasetOptions so;
   so.seed = c.seed;
-  for (std::size_t i = 0; i < retargeted.size(); ++i)
-    jobs.push_back({&retargeted[i], &built[i % bodies.size()], sequence_seed(c.seed, metas[i].name)});
-  const auto sequences = simulate_many(jobs, so, c.threads, [quiet](int done, int total) {
-    if (!quiet && (done % 50 == 0 || done == total))
+  so.threads = c.threads;
+  so.force = c.force;
+  so.generator = std::string("ptnet ") + PTNET_VERSION + " demo";
+  so.config_json = "{\"performers\": " + std::to_string(c.performers) + ", \"takes\": " +
+                   std::to_string(c.takes) + ", \"seconds\": " + std::to_string(c.seconds) +
+                   ", \"seed\": " + std::to_string(c.seed) + "}";
+  so.progress = [quiet](const std::string& phase, int done, int total) {
+    if (!quiet && phase == "simulate" && (done % 50 == 0 || done == total))
       std::cerr << "simulate: " << done << "/" << total << " sequences\r" << (done == total ? "\n" : "") << std::flush;
-  });
-
-  DatasetInfo info;
-  info.mat = so.mat;
-  info.fps = 30;
-  info.generator = std::string("ptnet ") + PTNET_VERSION + " demo";
-  info.config_json = "{\"performers\": " + std::to_string(c.performers) + ", \"takes\": " +
-                     std::to_string(c.takes) + ", \"seconds\": " + std::to_string(c.seconds) +
-                     ", \"seed\": " + std::to_string(c.seed) + "}";
-  {
-    DatasetWriter w(data_path, info, bodies, c.force);
-    for (std::size_t i = 0; i < sequences.size(); ++i) w.add(metas[i], sequences[i]);
-    w.commit();
-  }
+  };
+  simulate_dataset(clips, bodies, data_path, so);
   const Dataset d = Dataset::open(data_path);
   const std::string motion = "p1_walking_t1";
   FigureOptions fo;

@@ -12,20 +12,36 @@
 //     if it barely moves) laid along the mat's long axis, pointing to row 0
 //     (+x end); the body's left is col 0 (see ptnet/pressure.hpp). `follow`
 //     re-centres the mat on the smoothed pelvis path each frame.
+//     Rigs whose toe joint is not at the metatarsal heads (the ankle -> toe
+//     bone of a planted foot flatter or steeper than the canonical 20.8
+//     degrees) have their feet pitched back to the canonical sole.
+//     The floor is z = 0, corrected for capture drift: the lower envelope of
+//     the planted (slow, level) soles over floor_window_s, bounded to +/- 25 cm.
 //  2. depth from below: the lowest body surface above each of S x S samples
 //     per cell (foot soles, lower surfaces of the segment capsules).
-//  3. contact: samples within the compliance band; penetration = band - depth.
+//  3. contact: a frame has ground contact when some surface lies within the
+//     compliance band (default 10 mm) of the ground; otherwise it is airborne.
 //  4. load: F = m (g + a_z), a_z the low-passed vertical acceleration of the
-//     segment-mass centre of mass, clamped at 0; zero with no contact. F is
-//     shared over the contact cells in proportion to their mean penetration
-//     (elastic foundation), so sum(pressure x cell area) = F for a body wholly
-//     on the mat, before the sensor model. Contact off the mat takes its share
-//     but is not sensed.
+//     segment-mass centre of mass, clamped at 0; zero with no contact. The body
+//     sinks into an elastic foundation (sole tissue and mat foam, linear
+//     stiffness k) until it carries F: the sink level s solves
+//     sum_samples k max(0, s - z) dA = F, at most max_sink_m above the lowest
+//     surface point; each cell's pressure is proportional to its
+//     mean penetration max(0, s - z), scaled so that sum(pressure x cell area)
+//     = F for a body wholly on the mat, before the sensor model. So a heavier
+//     load sinks deeper and widens the contact (toe-off, heel strike) instead
+//     of piling onto a few cells. Moments balance too (balance_moments): the
+//     foundation tilts so that the centre of pressure moves towards the
+//     zero-moment point of the centre of mass, x_com - z_com a_xy / (g + a_z)
+//     (within 0.6 standard deviations of the contact): weight shifts from
+//     heel to toe as the body passes over the foot, and between the feet.
+//     Contact off the mat takes its share but is not sensed.
 //  5. sensor: crosstalk blur, saturation, noise, activation threshold,
 //     quantisation.
 // Same options (seed included): same bytes. Another seed changes only the noise.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -53,9 +69,13 @@ struct SimOptions {
   MatSpec mat;                           // 80 x 28 cells of 0.02 m
   Placement placement = Placement::fixed;  // fixed: a physical mat; follow: re-centred each frame
   double follow_smoothing_s = 1.0;       // follow: Gaussian sigma of the pelvis path smoothing (s)
-  double compliance_m = 0.010;           // surfaces within this height of the ground are in contact
+  double compliance_m = 0.010;           // contact: some surface within this height of the ground
+  double stiffness_kpa_per_mm = 6.0;     // elastic foundation: kPa per mm of penetration (sets the sink depth)
+  double max_sink_m = 0.025;             // the sink level stays within this of the lowest surface point
+  double floor_window_s = 1.0;           // capture floor followed over this window (+/- 25 cm; 0: z = 0 is the floor)
+  bool balance_moments = true;           // tilt the foundation: centre of pressure towards the CoM's zero-moment point
   int subsamples = 3;                    // S: S x S depth samples per cell
-  double com_filter_hz = 6.0;            // low-pass cutoff of the CoM vertical acceleration
+  double com_filter_hz = 4.0;            // low-pass cutoff of the CoM acceleration (Hz; Winter: 4-6 Hz for gait kinematics)
   SensorModel sensor;                    // see above
   std::uint64_t seed = 0;                // noise stream
 };
@@ -67,6 +87,26 @@ SensorModel ideal_sensor();
 // m, ground z = 0) on the mat: [T = motion.size(), rows, cols] kPa at
 // motion.fps. Throws Error for an empty motion or impossible options.
 PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options);
+
+// What simulate() attributes to each foot in one frame (before the sensor model).
+struct FootLoad {
+  double force_n = 0;     // vertical load carried by this foot's sole (N), on or off the mat
+  double heel_n = 0;      // of which under the heel (sole u < 0.3)
+  double forefoot_n = 0;  // of which under the metatarsal heads and toes (u >= 0.6)
+  double cop_u = -1;      // centre of pressure along the sole, 0 heel back .. 1 toe tip; -1: unloaded
+  double area_m2 = 0;     // contact area of the sole (penetration > 0)
+};
+struct FrameTrace {
+  std::array<FootLoad, 2> foot;  // [left, right]
+  double load_n = 0;             // F of the frame (N); 0 when airborne
+  double other_n = 0;            // carried by other body parts (knees, hands, ...)
+  double sink_m = 0;             // sink level above the lowest surface point (m)
+};
+
+// simulate() that also fills trace[T] (per-foot load, heel / forefoot split,
+// centre of pressure along each sole): for tests, gait analysis and figures.
+PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
+                          std::vector<FrameTrace>* trace);
 
 // Total vertical load (N) per frame, F = m (g + a_z) clamped at 0 (before the
 // contact test): [T], N.

@@ -2,6 +2,7 @@
 // tissue density, posing on the canonical skeleton, centre of mass.
 #include "ptnet/body.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -80,11 +81,19 @@ std::array<SolePatch, 2> foot_patches(const SoleSurface& sole, const Eigen::Vect
   p[0].u_end = sole.mtp_u;
   p[0].medial_sign = medial_sign;
   // Toes hinge at the metatarsophalangeal joint: they follow the foot when it
-  // is dorsiflexed (heel strike) and stay level when the heel rises.
+  // is dorsiflexed (heel strike). When the heel rises they bend up against
+  // the foot: level, or, with the joint above the ground (z = 0), pitched
+  // down until the toe tip rests on the ground, as the ground reaction
+  // dorsiflexes them in push-off; never beyond the line of the foot.
   Eigen::Vector3d ft = f;
-  if (f.z() < 0) ft = unit_or(Eigen::Vector3d(f.x(), f.y(), 0), f);
-  Eigen::Vector3d lt = unit_or(l - l.dot(ft) * ft, l);
   p[1].origin = p[0].origin + f * fwd;
+  if (f.z() < 0) {
+    const Eigen::Vector3d level = unit_or(Eigen::Vector3d(f.x(), f.y(), 0), f);
+    const double toe_len = (1 - sole.mtp_u) * sole.length_m;
+    const double s = std::clamp(p[1].origin.z() / toe_len, 0.0, -f.z());  // sine of the toes' pitch
+    ft = unit_or(std::sqrt(1 - s * s) * level - s * z, f);
+  }
+  Eigen::Vector3d lt = unit_or(l - l.dot(ft) * ft, l);
   p[1].forward = ft;
   p[1].left = lt;
   p[1].up = ft.cross(lt);

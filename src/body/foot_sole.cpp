@@ -30,20 +30,31 @@ double bell(double c, double w, double x) {
   return d >= 1 ? 0 : 0.5 * (1 + std::cos(M_PI * d));
 }
 
-// Half width of the outline (foot widths) at u.
-double half_width(double u) {
-  if (u < 0.12) return 0.31 * std::sqrt(std::max(0.0, 1 - std::pow((0.12 - u) / 0.12, 2)));
-  if (u < 0.30) return lerp(0.31, 0.33, (u - 0.12) / 0.18);
-  if (u < 0.62) return lerp(0.33, 0.47, smoothstep(0.30, 0.62, u));
-  if (u < 0.78) return lerp(0.47, 0.50, (u - 0.62) / 0.16);
-  return 0.48;
+// Medial and lateral extent of the outline (foot widths from the foot axis,
+// the line under the ankle and the toe joint) at u. The foot is not
+// symmetric about that axis: the heel is narrow and centred, the forefoot
+// widens mostly laterally (1st metatarsal head ~0.42 W medial, 5th ~0.58 W
+// lateral of the 2nd ray), so two feet standing side by side keep a gap.
+double medial_edge(double u) {
+  if (u < 0.12) return 0.32 * std::sqrt(std::max(0.0, 1 - std::pow((0.12 - u) / 0.12, 2)));
+  if (u < 0.30) return 0.32;
+  if (u < 0.62) return lerp(0.32, 0.40, smoothstep(0.30, 0.62, u));
+  if (u < 0.74) return lerp(0.40, 0.42, (u - 0.62) / 0.12);
+  return lerp(0.42, 0.38, smoothstep(0.74, 1.0, u));
+}
+double lateral_edge(double u) {
+  if (u < 0.12) return 0.32 * std::sqrt(std::max(0.0, 1 - std::pow((0.12 - u) / 0.12, 2)));
+  if (u < 0.30) return lerp(0.32, 0.36, (u - 0.12) / 0.18);
+  if (u < 0.66) return lerp(0.36, 0.56, smoothstep(0.30, 0.66, u));
+  if (u < 0.76) return 0.58;
+  return lerp(0.58, 0.50, smoothstep(0.76, 0.90, u));
 }
 
 // Forward end of the toes at v: the hallux (medial) reaches the tip, the
 // little toe ends at ~0.84 of the foot length.
 double toe_tip(double v) {
-  if (v > 0.2) return 1.0;
-  double t = (0.2 - v) / 0.7;
+  if (v > 0.15) return 1.0;
+  double t = (0.15 - v) / 0.65;
   return 1.0 - 0.16 * t * t;
 }
 
@@ -75,7 +86,7 @@ SoleSurface make_sole_surface(const BodySpec& spec) {
     double u = double(i) / (s.nu - 1);
     for (int j = 0; j < s.nv; ++j) {
       double v = s.v_min + (s.v_max - s.v_min) * j / (s.nv - 1);
-      bool inside = std::abs(v) <= half_width(u) && u <= toe_tip(v);
+      bool inside = v <= medial_edge(u) && -v <= lateral_edge(u) && u <= toe_tip(v);
       if (!inside) continue;
       // Heel pad: a bowl, lowest under the calcaneal tuberosity.
       double r2 = std::pow((u - 0.14) / 0.17, 2) + std::pow(v / 0.33, 2);
@@ -90,9 +101,9 @@ SoleSurface make_sole_surface(const BodySpec& spec) {
       // across the rest, each a bowl separated by shallow gaps.
       double toes;
       if (v > 0.12) {
-        toes = soft * (2.5 + 10.0 * std::pow((v - 0.31) / 0.19, 2) + 8.0 * std::pow((u - 0.90) / 0.08, 2));
+        toes = soft * (2.5 + 10.0 * std::pow((v - 0.27) / 0.16, 2) + 8.0 * std::pow((u - 0.90) / 0.08, 2));
       } else {
-        double pad = (v + 0.5) / 0.62 * 4;  // 0..4 across the lesser toes
+        double pad = (v + 0.52) / 0.64 * 4;  // 0..4 across the lesser toes
         double within = pad - std::floor(pad) - 0.5;
         double tip = 0.84 + 0.04 * std::min(pad, 4.0) / 4;  // pad centre along u
         toes = soft * (4.5 + 12.0 * within * within + 10.0 * std::pow((u - tip) / 0.06, 2));

@@ -83,7 +83,14 @@ Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
     p.yaw = heading_yaw + sgn * st.toe_out;
     return p;
   };
-  for (int s = 0; s < 2; ++s) feet[s].plants.push_back(footprint(s, c, yaw));
+  // Quiet standing before the first step: feet under the hip joints (+/- 0.0475 H;
+  // preferred stance width ~17 cm between heel centres, McIlroy & Maki 1997),
+  // wider than the walking step width.
+  for (int s = 0; s < 2; ++s) {
+    Plant p = footprint(s, c, yaw);
+    p.xy = c + rotate(yaw, {0, (s == 0 ? 1.0 : -1.0) * 0.0475 * h});
+    feet[s].plants.push_back(p);
+  }
 
   rig::Spline pelvis;  // (x, y, yaw)
   pelvis.add(0, {c.x(), c.y(), yaw});

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "sim_internal.hpp"
 
 namespace ptnet::detail {
@@ -23,6 +25,90 @@ std::vector<double> gaussian_smooth(const std::vector<double>& x, double sigma) 
     y[t] = s / w;
   }
   return y;
+}
+
+std::vector<double> floor_track(const Motion& motion, const Body& body, double window_s, double max_m) {
+  const int T = motion.size();
+  std::vector<double> floor(static_cast<std::size_t>(T), 0.0);
+  if (!(window_s > 0) || T == 0) return floor;
+  const double fps = motion.fps > 0 ? motion.fps : 30;
+  // The floor is where flat, planted feet stand: per frame, the sole plane
+  // of a foot that is nearly level (< ~7 degrees) and barely moves (< 0.15
+  // m/s). Heel strikes and toe-offs do not count: their rigid sole reaches
+  // lower than the real, rolling one.
+  std::vector<double> planted(std::size_t(T), 1e300);
+  for (int t = 0; t < T; ++t) {
+    const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
+    for (int s = 0; s < 2; ++s) {
+      const auto& f = s ? pb.right_foot : pb.left_foot;
+      const int a = s ? kRightAnkle : kLeftAnkle;
+      const int t0 = std::max(0, t - 1), t1 = std::min(T - 1, t + 1);
+      const double speed =
+          t1 > t0 ? (motion.frames[std::size_t(t1)][a] - motion.frames[std::size_t(t0)][a]).head<2>().norm() * fps / (t1 - t0)
+                  : 0.0;
+      if (speed < 0.15 && std::abs(f[0].forward.z()) < 0.12)
+        planted[std::size_t(t)] = std::min(planted[std::size_t(t)], f[0].origin.z());
+    }
+  }
+  const int half = std::max(1, int(std::lround(0.5 * window_s * fps)));
+  bool any = false;
+  for (int t = 0; t < T; ++t) {
+    double m = 1e300;
+    for (int k = std::max(0, t - half); k <= std::min(T - 1, t + half); ++k) m = std::min(m, planted[std::size_t(k)]);
+    if (m < 1e299) {
+      floor[std::size_t(t)] = std::clamp(m, -max_m, max_m);
+      any = true;
+    } else {
+      floor[std::size_t(t)] = std::nan("");
+    }
+  }
+  if (!any) return std::vector<double>(std::size_t(T), 0.0);
+  // Hold the last known floor across frames with no planted foot.
+  double last = std::nan("");
+  for (int t = 0; t < T; ++t)
+    if (std::isnan(floor[std::size_t(t)])) floor[std::size_t(t)] = last; else last = floor[std::size_t(t)];
+  last = std::nan("");
+  for (int t = T - 1; t >= 0; --t)
+    if (std::isnan(floor[std::size_t(t)])) floor[std::size_t(t)] = last; else last = floor[std::size_t(t)];
+  return gaussian_smooth(floor, 0.5 * half);
+}
+
+std::array<double, 2> foot_pitch_offsets(const Motion& motion) {
+  // Canonical rest pitch of ankle -> toe joint below the horizontal: the
+  // ankle 0.039 H and the toe joint 0.009 H above the ground, 0.079 H apart.
+  const double rest = std::atan2(0.039 - 0.009, 0.079);
+  const int T = motion.size();
+  const double fps = motion.fps > 0 ? motion.fps : 30;
+  std::array<double, 2> out{0, 0};
+  for (int s = 0; s < 2; ++s) {
+    const int a = s ? kRightAnkle : kLeftAnkle, b = a + 1;
+    std::vector<double> pitch;
+    for (int t = 1; t + 1 < T; ++t) {
+      const Pose& p = motion.frames[std::size_t(t)];
+      const double v = (motion.frames[std::size_t(t + 1)][a] - motion.frames[std::size_t(t - 1)][a]).head<2>().norm() * fps / 2;
+      if (v > 0.05) continue;  // planted: the ankle barely moves
+      const Eigen::Vector3d d = p[b] - p[a];
+      pitch.push_back(std::atan2(-d.z(), d.head<2>().norm()));
+    }
+    if (pitch.size() < 5) continue;
+    // Most planted frames are the foot flat on the floor: the median.
+    const std::size_t q = pitch.size() / 2;
+    std::nth_element(pitch.begin(), pitch.begin() + std::ptrdiff_t(q), pitch.end());
+    out[std::size_t(s)] = std::clamp(rest - pitch[q], -0.5, 0.5);
+  }
+  return out;
+}
+
+void correct_foot_pitch(Pose& pose, const std::array<double, 2>& offsets) {
+  for (int s = 0; s < 2; ++s) {
+    if (offsets[std::size_t(s)] == 0) continue;
+    const int a = s ? kRightAnkle : kLeftAnkle, b = a + 1;
+    const Eigen::Vector3d d = pose[b] - pose[a];
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ().cross(d);
+    if (axis.norm() < 1e-9) continue;
+    // Rotating about z x d by +angle lowers the toe joint (pitches the foot down).
+    pose[b] = pose[a] + Eigen::AngleAxisd(offsets[std::size_t(s)], axis.normalized()) * d;
+  }
 }
 
 MatPlacement place_on_mat(const Motion& motion, const SimOptions& options) {
@@ -82,9 +168,21 @@ MatPlacement place_on_mat(const Motion& motion, const SimOptions& options) {
       px[t] = motion.frames[t][kPelvis].x();
       py[t] = motion.frames[t][kPelvis].y();
     }
-    double sigma = options.follow_smoothing_s * motion.fps;
-    px = gaussian_smooth(px, sigma);
-    py = gaussian_smooth(py, sigma);
+    // Smoothing near the ends: the path is extended by its point reflection
+    // through the end point, so that steady walking is followed without lag.
+    const double sigma = options.follow_smoothing_s * motion.fps;
+    auto smooth_path = [&](const std::vector<double>& x) {
+      const int pad = std::min(T - 1, int(std::ceil(3 * sigma)));
+      std::vector<double> ext;
+      ext.reserve(std::size_t(T + 2 * pad));
+      for (int k = pad; k >= 1; --k) ext.push_back(2 * x[0] - x[std::size_t(k)]);
+      ext.insert(ext.end(), x.begin(), x.end());
+      for (int k = 1; k <= pad; ++k) ext.push_back(2 * x[std::size_t(T - 1)] - x[std::size_t(T - 1 - k)]);
+      ext = gaussian_smooth(ext, sigma);
+      return std::vector<double>(ext.begin() + pad, ext.begin() + pad + T);
+    };
+    px = smooth_path(px);
+    py = smooth_path(py);
     for (int t = 0; t < T; ++t) out.centre[t] = Eigen::Vector2d(px[t], py[t]);
   }
   return out;

@@ -5,11 +5,13 @@
 // ptnet::SoleSurface, sampled analytically per sample) and the lower surfaces
 // of the segment capsules (a chain of spheres along each tapered capsule,
 // spaced at a third of the smaller radius: the envelope sags < r / 70).
-// Only the samples under each surface's bounding box are visited, and only
-// surfaces whose lowest point is within the band are rasterised.
+// Only surfaces whose lowest point can reach the sink level are rasterised;
+// a sole patch visits, row by row, only the samples its table spans.
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include <Eigen/LU>
 
 #include "sim_internal.hpp"
 
@@ -18,10 +20,12 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 }
 
-Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m)
+Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m, double max_sink_m)
     : mat_(mat),
       s_(subsamples),
       band_(float(compliance_m)),
+      max_sink_(float(max_sink_m)),
+      reach_(float(compliance_m + max_sink_m)),
       ds_(mat.pitch_m / subsamples),
       half_l_(0.5 * mat.rows * mat.pitch_m),
       half_w_(0.5 * mat.cols * mat.pitch_m),
@@ -29,6 +33,7 @@ Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m)
       ns_cols_(mat.cols * subsamples),
       zbuf_(std::size_t(ns_rows_) * ns_cols_, kInf) {
   di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
+  zlo_ = kInf;
 }
 
 // Sample i has its centre at X = L/2 - (i + 0.5) ds.
@@ -48,7 +53,22 @@ void Rasteriser::touch(int i0, int i1, int j0, int j1) {
   dj1_ = std::max(dj1_, std::min(j1, ns_cols_ - 1));
 }
 
-void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p) {
+namespace {
+// Narrows the integer range [lo, hi] of j to where lo_v <= c + a j < hi_v.
+void clip_affine(double c, double a, double lo_v, double hi_v, int& lo, int& hi) {
+  if (std::abs(a) < 1e-12) {
+    if (!(c >= lo_v && c < hi_v)) hi = lo - 1;
+    return;
+  }
+  double j0 = (lo_v - c) / a, j1 = (hi_v - c) / a;
+  if (a < 0) std::swap(j0, j1);
+  // Conservative by one sample either side; the exact test runs per sample.
+  lo = std::max(lo, int(std::floor(j0)) - 1);
+  hi = std::min(hi, int(std::ceil(j1)) + 1);
+}
+}  // namespace
+
+void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner) {
   const Eigen::Vector3d& n = p.up;
   if (n.z() < 0.2) return;  // sole nearly vertical: its edge is not modelled
   // Corners of the patch on its plane; the profile only rises above it.
@@ -62,7 +82,7 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p) {
       zmin = std::min(zmin, c.z());
     }
   }
-  if (zmin > band_) return;
+  if (zmin > reach_) return;
   int i0, i1, j0, j1;
   row_range(x0, x1, i0, i1);
   col_range(y0, y1, j0, j1);
@@ -80,26 +100,36 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p) {
   const double fi0 = p.u_origin * (sole.nu - 1), fj0 = -sole.v_min / (sole.v_max - sole.v_min) * (sole.nv - 1);
   const double fi_lo = p.u_begin * (sole.nu - 1) - 0.5, fi_hi = p.u_end * (sole.nu - 1) + 0.5;
   const float inv_nz = float(1.0 / n.z());
+  const float inv_nu = float(1.0 / (sole.nu - 1));
   const float* table = sole.height_m.data();
   const int nu = sole.nu, nv = sole.nv;
+  // Along a row of samples, fi, fj and z change by a constant per sample.
+  const double dfi = -iu * sy * ds_, dfj = -iv * wy * ds_, dz = -zy * ds_;
   for (int i = i0; i <= i1; ++i) {
     const double dX = half_l_ - (i + 0.5) * ds_ - ox;
-    for (int j = j0; j <= j1; ++j) {
-      const double dY = half_w_ - (j + 0.5) * ds_ - oy;
-      const double fi = fi0 + iu * (sx * dX + sy * dY);
+    const double dY0 = half_w_ - (j0 + 0.5) * ds_ - oy;
+    // Values at j = j0 (then stepped by j - j0).
+    const double fi_a = fi0 + iu * (sx * dX + sy * dY0);
+    const double fj_a = fj0 + iv * (wx * dX + wy * dY0);
+    const double z_a = oz + zx * dX + zy * dY0;
+    int lo = 0, hi = j1 - j0;
+    clip_affine(fi_a, dfi, fi_lo, fi_hi, lo, hi);
+    clip_affine(fj_a, dfj, -0.5, nv - 0.5, lo, hi);
+    for (int k = lo; k <= hi; ++k) {
+      const double fi = fi_a + dfi * k;
       if (fi < fi_lo || fi >= fi_hi) continue;
-      const double fj = fj0 + iv * (wx * dX + wy * dY);
+      const double fj = fj_a + dfj * k;
       const int ti = int(fi + 0.5), tj = int(fj + 0.5);
       if (ti < 0 || ti >= nu || fj < -0.5 || tj >= nv) continue;
       const float h = table[std::size_t(ti) * nv + tj];
       if (h >= SoleSurface::kOutside) continue;
-      record(i, j, float(oz + zx * dX + zy * dY) + h * inv_nz);
+      record(i, j0 + k, float(z_a + dz * k) + h * inv_nz, owner, float(fi) * inv_nu);
     }
   }
 }
 
 void Rasteriser::sphere(double cx, double cy, double cz, double r) {
-  if (cz - r > band_) return;
+  if (cz - r > reach_) return;
   int i0, i1, j0, j1;
   row_range(cx - r, cx + r, i0, i1);
   col_range(cy - r, cy + r, j0, j1);
@@ -111,53 +141,193 @@ void Rasteriser::sphere(double cx, double cy, double cz, double r) {
     for (int j = j0; j <= j1; ++j) {
       const double dy = half_w_ - (j + 0.5) * ds_ - cy;
       const double d2 = dx * dx + dy * dy;
-      if (d2 < r2) record(i, j, float(cz - std::sqrt(r2 - d2)));
+      if (d2 < r2) record(i, j, float(cz - std::sqrt(r2 - d2)), kOther, 0.0f);
     }
   }
 }
 
 void Rasteriser::capsule(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double ra, double rb) {
-  if (std::min(a.z() - ra, b.z() - rb) > band_) return;
+  if (std::min(a.z() - ra, b.z() - rb) > reach_) return;
   const double len = (b - a).norm();
   const int n = 1 + int(std::ceil(len / (std::min(ra, rb) / 3)));
   for (int k = 0; k <= n; ++k) {
     const double t = double(k) / n;
     const Eigen::Vector3d c = a + t * (b - a);
-    sphere(c.x(), c.y(), c.z(), ra + t * (rb - ra));
+    const double r = ra + t * (rb - ra);
+    if (c.z() - r > reach_) continue;
+    sphere(c.x(), c.y(), c.z(), r);
   }
 }
 
-double Rasteriser::penetration(const Body& body, const PosedBody& posed, float* pen) {
-  off_pen_ = 0;
-  for (const auto& p : posed.left_foot) patch(body.sole(), p);
-  for (const auto& p : posed.right_foot) patch(body.sole(), p);
+void Rasteriser::rasterise(const Body& body, const PosedBody& posed, bool trace) {
+  trace_ = trace;
+  if (trace_ && owner_.empty()) {
+    owner_.assign(zbuf_.size(), kNone);
+    ubuf_.assign(zbuf_.size(), 0.0f);
+  }
+  for (const auto& p : posed.left_foot) patch(body.sole(), p, kLeftSole);
+  for (const auto& p : posed.right_foot) patch(body.sole(), p, kRightSole);
   const auto& segs = body.segments();
   for (int s = 0; s < kSegmentCount; ++s)
     if (segs[s].touches_ground) capsule(posed.a[s], posed.b[s], segs[s].radius_a_m, segs[s].radius_b_m);
+}
 
-  std::fill(pen, pen + mat_.cells(), 0.0f);
-  const float inv_s2 = 1.0f / float(s_ * s_);
-  double total = off_pen_ * inv_s2;
+void Rasteriser::clear() {
   if (di1_ >= di0_ && dj1_ >= dj0_) {
-    // Whole cells covering the dirty rectangle.
-    const int r0 = di0_ / s_, r1 = di1_ / s_, c0 = dj0_ / s_, c1 = dj1_ / s_;
-    for (int r = r0; r <= r1; ++r) {
-      for (int c = c0; c <= c1; ++c) {
-        float sum = 0;
-        for (int a = 0; a < s_; ++a) {
-          float* z = &zbuf_[std::size_t(r * s_ + a) * ns_cols_ + c * s_];
-          for (int b = 0; b < s_; ++b) {
-            if (z[b] < band_) sum += band_ - z[b];
-            z[b] = kInf;
-          }
-        }
-        pen[r * mat_.cols + c] = sum * inv_s2;
-        total += sum * inv_s2;
-      }
-    }
+    for (int i = di0_; i <= di1_; ++i)
+      std::fill(&zbuf_[std::size_t(i) * ns_cols_ + dj0_], &zbuf_[std::size_t(i) * ns_cols_ + dj1_] + 1, kInf);
   }
   di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
-  return total;
+  zlo_ = kInf;
+  off_.clear();
+  off_u_.clear();
+  off_owner_.clear();
+}
+
+void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
+                            FrameTrace* trace) {
+  std::fill(frame, frame + mat_.cells(), 0.0f);
+  if (trace) *trace = FrameTrace{};
+  if (!(zlo_ < band_) || !(load_n > 0)) {  // airborne, or nothing to carry
+    clear();
+    return;
+  }
+  const bool dirty = di1_ >= di0_ && dj1_ >= dj0_;
+  const int r0 = dirty ? di0_ / s_ : 0, r1 = dirty ? di1_ / s_ : -1;
+  const int c0 = dirty ? dj0_ / s_ : 0, c1 = dirty ? dj1_ / s_ : -1;
+  const double pitch = mat_.pitch_m;
+  auto cell_x = [&](int r) { return half_l_ - (r + 0.5) * pitch; };
+  auto cell_y = [&](int c) { return half_w_ - (c + 0.5) * pitch; };
+  auto sample_x = [&](int i) { return half_l_ - (i + 0.5) * ds_; };
+  auto sample_y = [&](int j) { return half_w_ - (j + 0.5) * ds_; };
+
+  // 1. Sink level s: sum over samples of max(0, s - z) = F / (k dA), from a
+  //    histogram of the sample heights within max_sink of the lowest point
+  //    (exact at bin edges, linear within a bin).
+  constexpr int kBins = 64;
+  const float zlo = zlo_, w = max_sink_ / kBins, inv_w = 1.0f / w, ztop = zlo + max_sink_;
+  int count[kBins] = {};
+  double sum[kBins] = {};
+  auto bin = [&](float z) {
+    if (z < ztop) {
+      const int b = std::min(kBins - 1, int((z - zlo) * inv_w));
+      ++count[b];
+      sum[b] += z;
+    }
+  };
+  if (dirty)
+    for (int i = di0_; i <= di1_; ++i) {
+      const float* z = &zbuf_[std::size_t(i) * ns_cols_];
+      for (int j = dj0_; j <= dj1_; ++j) bin(z[j]);
+    }
+  for (const OffSample& o : off_) bin(o.z);
+  const double sample_area = ds_ * ds_;
+  const double target_sum = load_n / (stiffness_pa_per_m * sample_area);  // sum of (s - z), m
+  double level = ztop, n = 0, s = 0;
+  for (int b = 0; b < kBins; ++b) {
+    n += count[b];
+    s += sum[b];
+    const double edge = zlo + (b + 1) * double(w);
+    if (n > 0 && n * edge - s >= target_sum) {
+      level = std::clamp((target_sum + s) / n, zlo + b * double(w), edge);
+      break;
+    }
+  }
+  const float lv = float(level);
+
+  // 2. Mean penetration per cell (m), and its moments for the tilt.
+  const float inv_s2 = 1.0f / float(s_ * s_);
+  double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
+  auto moment = [&](double p, double x, double y) {
+    m0 += p, mx += p * x, my += p * y, mxx += p * x * x, mxy += p * x * y, myy += p * y * y;
+  };
+  for (const OffSample& o : off_)
+    if (o.z < lv) moment((lv - o.z) * inv_s2, sample_x(o.i), sample_y(o.j));
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) {
+      float acc = 0;
+      for (int a = 0; a < s_; ++a) {
+        const float* z = &zbuf_[std::size_t(r * s_ + a) * ns_cols_ + c * s_];
+        for (int b = 0; b < s_; ++b)
+          if (z[b] < lv) acc += lv - z[b];
+      }
+      acc *= inv_s2;
+      frame[r * mat_.cols + c] = acc;
+      if (acc > 0) moment(acc, cell_x(r), cell_y(c));
+    }
+  if (!(m0 > 0)) {
+    std::fill(frame, frame + mat_.cells(), 0.0f);
+    clear();
+    return;
+  }
+
+  // 3. Tilt towards the target: weights 1 + g . (r - c) move the centre of
+  //    pressure by C g (C the penetration-weighted covariance of the contact).
+  const Eigen::Vector2d centroid(mx / m0, my / m0);
+  Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
+  if (target) {
+    Eigen::Matrix2d cov;
+    cov << mxx / m0 - centroid.x() * centroid.x(), mxy / m0 - centroid.x() * centroid.y(),
+        mxy / m0 - centroid.x() * centroid.y(), myy / m0 - centroid.y() * centroid.y();
+    cov += Eigen::Matrix2d::Identity() * (pitch * pitch / 12);  // a cell's own extent
+    const Eigen::Matrix2d inv = cov.inverse();
+    Eigen::Vector2d shift = *target - centroid;
+    const double maha = std::sqrt(std::max(0.0, shift.dot(inv * shift)));
+    constexpr double kMaxShift = 0.6;  // standard deviations: every contact cell keeps some load
+    if (maha > kMaxShift) shift *= kMaxShift / maha;
+    tilt = inv * shift;
+  }
+  auto weight = [&](double x, double y) {
+    return std::max(0.0, 1.0 + tilt.x() * (x - centroid.x()) + tilt.y() * (y - centroid.y()));
+  };
+  double total = 0;  // sum of weighted cell penetrations, on and off the mat (m)
+  for (const OffSample& o : off_)
+    if (o.z < lv) total += (lv - o.z) * inv_s2 * weight(sample_x(o.i), sample_y(o.j));
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) {
+      float& p = frame[r * mat_.cols + c];
+      if (p > 0) {
+        p = float(p * weight(cell_x(r), cell_y(c)));
+        total += p;
+      }
+    }
+  const double scale = total > 0 ? load_n / (total * mat_.cell_area_m2()) / 1000.0 : 0.0;  // kPa per m
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) frame[r * mat_.cols + c] = float(frame[r * mat_.cols + c] * scale);
+
+  // 4. Who carries what (trace): per sample force = weighted penetration x
+  //    scale x sample area (the weight of its cell, as on the map).
+  if (trace && total > 0) {
+    trace->load_n = load_n;
+    trace->sink_m = level - zlo;
+    const double per_m = scale * 1000.0 * sample_area;  // N per m of sample penetration
+    double cop[2] = {0, 0};
+    auto add = [&](unsigned char owner, float z, float u, double wgt) {
+      if (!(z < lv) || !(wgt > 0)) return;
+      const double f = (lv - z) * per_m * wgt;
+      if (owner == kLeftSole || owner == kRightSole) {
+        FootLoad& fl = trace->foot[owner - 1];
+        fl.force_n += f;
+        fl.area_m2 += sample_area;
+        cop[owner - 1] += f * u;
+        if (u < 0.3f) fl.heel_n += f;
+        if (u >= 0.6f) fl.forefoot_n += f;
+      } else {
+        trace->other_n += f;
+      }
+    };
+    if (dirty)
+      for (int i = di0_; i <= di1_; ++i)
+        for (int j = dj0_; j <= dj1_; ++j) {
+          const std::size_t k = std::size_t(i) * ns_cols_ + j;
+          add(owner_[k], zbuf_[k], ubuf_[k], weight(cell_x(i / s_), cell_y(j / s_)));
+        }
+    for (std::size_t k = 0; k < off_.size(); ++k)
+      add(off_owner_[k], off_[k].z, off_u_[k], weight(sample_x(off_[k].i), sample_y(off_[k].j)));
+    for (int f = 0; f < 2; ++f)
+      if (trace->foot[f].force_n > 0) trace->foot[f].cop_u = cop[f] / trace->foot[f].force_n;
+  }
+  clear();
 }
 
 }  // namespace ptnet::detail

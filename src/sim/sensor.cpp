@@ -1,6 +1,7 @@
 // The sensor model of a resistive pressure mat, applied per frame:
 // crosstalk blur -> saturation -> read noise -> activation threshold -> ADC
-// quantisation (then clamped to [0, saturation]).
+// quantisation (then clamped to [0, saturation]). Only the cells that can
+// read above the threshold are visited (and draw noise).
 #include <algorithm>
 #include <cmath>
 
@@ -32,28 +33,54 @@ void apply_sensor(const SensorModel& sensor, const MatSpec& mat, float* frame, f
                   std::uint64_t& rng) {
   const int R = mat.rows, C = mat.cols;
   const float k = float(sensor.crosstalk);
-  if (k > 0) {
-    std::copy(frame, frame + R * C, scratch);
-    for (int r = 0; r < R; ++r) {
-      for (int c = 0; c < C; ++c) {
+  const float sat = float(sensor.saturation_kpa), sd = float(sensor.noise_sd_kpa);
+  const float thr = float(sensor.threshold_kpa), q = float(sensor.quantum_kpa);
+  // The noise is bounded (|normalish| <= 2 sqrt(3) sd): a cell further below
+  // the threshold than that reads 0 whatever the draw, and draws nothing.
+  const float reach = 3.4642f * sd;
+  const bool sparse = thr > reach;
+  // Rows and columns holding any pressure (plus the crosstalk halo).
+  int r0 = R, r1 = -1, c0 = C, c1 = -1;
+  for (int r = 0; r < R; ++r) {
+    const float* row = frame + r * C;
+    for (int c = 0; c < C; ++c)
+      if (row[c] != 0) {
+        r0 = std::min(r0, r), r1 = std::max(r1, r);
+        c0 = std::min(c0, c), c1 = std::max(c1, c);
+      }
+  }
+  if (r1 < 0 && sparse) return;  // an empty frame stays empty
+  if (k > 0 && r1 >= 0) {
+    r0 = std::max(0, r0 - 1), r1 = std::min(R - 1, r1 + 1);
+    c0 = std::max(0, c0 - 1), c1 = std::min(C - 1, c1 + 1);
+    for (int r = r0; r <= r1; ++r) std::copy(frame + r * C + c0, frame + r * C + c1 + 1, scratch + r * C + c0);
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) {
         const float* s = scratch + r * C + c;
         float nb = 0;
-        if (r > 0) nb += s[-C];
-        if (r + 1 < R) nb += s[C];
-        if (c > 0) nb += s[-1];
-        if (c + 1 < C) nb += s[1];
+        if (r > r0) nb += s[-C];
+        if (r < r1) nb += s[C];
+        if (c > c0) nb += s[-1];
+        if (c < c1) nb += s[1];
         frame[r * C + c] = (1 - 4 * k) * s[0] + k * nb;
       }
     }
   }
-  const float sat = float(sensor.saturation_kpa), sd = float(sensor.noise_sd_kpa);
-  const float thr = float(sensor.threshold_kpa), q = float(sensor.quantum_kpa);
-  for (int i = 0; i < R * C; ++i) {
-    float v = std::min(frame[i], sat);
+  auto read = [&](float v) {
+    v = std::min(v, sat);
     if (sd > 0) v += sd * normalish(rng);
-    if (v < thr) v = 0;
-    if (q > 0) v = std::round(v / q) * q;
-    frame[i] = std::clamp(v, 0.0f, sat);
+    if (v < thr) return 0.0f;
+    if (q > 0) v = float(std::nearbyint(v / q)) * q;
+    return std::clamp(v, 0.0f, sat);
+  };
+  if (sparse) {
+    for (int r = r0; r <= r1; ++r)
+      for (int c = c0; c <= c1; ++c) {
+        float& v = frame[r * C + c];
+        v = v + reach < thr ? 0.0f : read(v);
+      }
+  } else {
+    for (int i = 0; i < R * C; ++i) frame[i] = read(frame[i]);
   }
 }
 

@@ -33,6 +33,9 @@ void check_options(const SimOptions& o) {
     throw Error("simulate: mat must have rows, cols >= 1 and pitch_m > 0");
   if (o.subsamples < 1 || o.subsamples > 16) throw Error("simulate: subsamples must be 1-16");
   if (!(o.compliance_m > 0)) throw Error("simulate: compliance_m must be > 0");
+  if (!(o.stiffness_kpa_per_mm > 0)) throw Error("simulate: stiffness_kpa_per_mm must be > 0");
+  if (!(o.max_sink_m > 0)) throw Error("simulate: max_sink_m must be > 0");
+  if (!(o.floor_window_s >= 0)) throw Error("simulate: floor_window_s must be >= 0");
   const auto& s = o.sensor;
   if (!(s.crosstalk >= 0 && s.crosstalk < 0.25)) throw Error("simulate: crosstalk must be in [0, 0.25)");
   if (!(s.saturation_kpa > 0) || !(s.noise_sd_kpa >= 0) || !(s.threshold_kpa >= 0) || !(s.quantum_kpa >= 0))
@@ -42,18 +45,35 @@ void check_options(const SimOptions& o) {
 }  // namespace
 
 PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options) {
+  return simulate(motion, body, options, nullptr);
+}
+
+PressureSequence simulate(const Motion& input, const Body& body, const SimOptions& options,
+                          std::vector<FrameTrace>* trace) {
   check_options(options);
-  if (motion.size() == 0) throw Error("simulate: motion '" + motion.name + "' has no frames");
+  if (input.size() == 0) throw Error("simulate: motion '" + input.name + "' has no frames");
+  // Feet whose toe joint sits off the canonical sole (rig conventions) are
+  // pitched back to it; canonical motions are used as they are.
+  const std::array<double, 2> pitch = detail::foot_pitch_offsets(input);
+  Motion corrected;
+  const bool correct = std::abs(pitch[0]) > 0.03 || std::abs(pitch[1]) > 0.03;  // ~2 degrees
+  if (correct) {
+    corrected = input;
+    for (Pose& p : corrected.frames) detail::correct_foot_pitch(p, pitch);
+  }
+  const Motion& motion = correct ? corrected : input;
   const int T = motion.size();
   const MatSpec& mat = options.mat;
   PressureSequence seq(mat, T, motion.fps);
+  if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
   const detail::MatPlacement place = detail::place_on_mat(motion, options);
-  const std::vector<double> load = vertical_load(motion, body, options.com_filter_hz);
-  detail::Rasteriser raster(mat, options.subsamples, options.compliance_m);
+  const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
+  const std::vector<double> floor = detail::floor_track(motion, body, options.floor_window_s, 0.25);
+  detail::Rasteriser raster(mat, options.subsamples, options.compliance_m, options.max_sink_m);
   std::vector<float> scratch(mat.cells());
   std::uint64_t rng = options.seed ^ 0x5bd1e9955bd1e995ULL;
-  const double cell_area = mat.cell_area_m2();
+  const double stiffness = options.stiffness_kpa_per_mm * 1e6;  // kPa/mm -> Pa/m
 
   Pose local;
   for (int t = 0; t < T; ++t) {
@@ -61,14 +81,14 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
     const Eigen::Vector2d& c = place.centre[t];
     for (int j = 0; j < kJointCount; ++j) {
       const Eigen::Vector2d d = pose[j].head<2>() - c;
-      local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z());
+      local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor[std::size_t(t)]);
     }
     float* frame = seq.frame(t);
-    const double total = raster.penetration(body, pose_body(body, local), frame);
-    // Elastic foundation: pressure proportional to penetration, scaled so that
-    // all contact together carries F (kPa per metre of mean penetration).
-    const double scale = total > 0 ? load[t] / (total * cell_area) / 1000.0 : 0.0;
-    for (int i = 0; i < mat.cells(); ++i) frame[i] = float(frame[i] * scale);
+    raster.rasterise(body, pose_body(body, local), trace != nullptr);
+    const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
+    const Eigen::Vector2d zmp(place.axis.dot(d), place.left.dot(d));
+    raster.distribute(com.load_n[std::size_t(t)], stiffness, options.balance_moments ? &zmp : nullptr, frame,
+                      trace ? &(*trace)[std::size_t(t)] : nullptr);
     detail::apply_sensor(options.sensor, mat, frame, scratch.data(), rng);
   }
   return seq;

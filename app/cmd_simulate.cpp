@@ -1,0 +1,150 @@
+// ptnet simulate: motion clips x bodies -> pressure-mat dataset (HDF5).
+//
+//   ptnet simulate --motions ../shared/mocap --clips ../shared/mocap/clips.csv
+//                  --bodies bodies.csv --out mocap.h5
+//   ptnet simulate --embedded --performers 2 --takes 1 --seconds 4 --bodies bodies.csv --out demo.h5
+//
+// Options and sensor defaults: docs/simulate.md.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "command.hpp"
+#include "ptnet/body_spec.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/simulate_dataset.hpp"
+
+namespace ptnet::cli {
+namespace {
+
+struct SimulateCli {
+  std::vector<std::string> motions;
+  std::string clips, bodies, out;
+  bool embedded = false;
+  int performers = 5, takes = 2;
+  double seconds = 8;
+  double fps = 30;
+  std::uint64_t seed = 0;
+  int threads = 0;
+  std::string placement = "fixed";
+  std::string units = "auto", up = "y";
+  int rows = 80, cols = 28;
+  double pitch_m = 0.02;
+  double compliance_mm = 10;
+  int subsamples = 3;
+  double crosstalk = -1, saturation_kpa = -1, noise_kpa = -1, threshold_kpa = -1, quantum_kpa = -1;
+  bool ideal = false;
+  bool force = false;
+};
+
+void run(const SimulateCli& c) {
+  const bool quiet = globals().quiet;
+  if (c.embedded && (!c.motions.empty() || !c.clips.empty()))
+    throw Error("simulate: --embedded replaces --motions and --clips; give one or the other");
+  if (!c.embedded && c.motions.empty() && c.clips.empty())
+    throw Error("simulate: give --motions (BVH files or folders), --clips, or --embedded");
+
+  SimulateDatasetOptions o;
+  o.fps = c.fps;
+  o.seed = c.seed;
+  o.threads = c.threads;
+  o.force = c.force;
+  o.generator = std::string("ptnet ") + PTNET_VERSION + " simulate";
+  SimOptions& s = o.sim;
+  s.mat = MatSpec{c.rows, c.cols, c.pitch_m};
+  s.placement = parse_placement(c.placement);
+  s.compliance_m = c.compliance_mm / 1000.0;
+  s.subsamples = c.subsamples;
+  if (c.ideal) s.sensor = ideal_sensor();
+  if (c.crosstalk >= 0) s.sensor.crosstalk = c.crosstalk;
+  if (c.saturation_kpa >= 0) s.sensor.saturation_kpa = c.saturation_kpa;
+  if (c.noise_kpa >= 0) s.sensor.noise_sd_kpa = c.noise_kpa;
+  if (c.threshold_kpa >= 0) s.sensor.threshold_kpa = c.threshold_kpa;
+  if (c.quantum_kpa >= 0) s.sensor.quantum_kpa = c.quantum_kpa;
+
+  // Inputs are all checked before any work: output path, bodies, clips.
+  check_output_path(c.out, c.force);
+  const std::vector<BodySpec> bodies = read_bodies_csv(c.bodies);
+  if (bodies.empty()) throw Error::in(c.bodies, "no bodies (expected at least one row after the header)");
+  std::vector<ClipSource> clips;
+  if (c.embedded) {
+    clips = embedded_clips(c.performers, c.takes, c.seconds, c.seed, c.fps);
+  } else {
+    MotionOptions mo;
+    mo.units = parse_units(c.units);
+    mo.up = parse_up_axis(c.up);
+    mo.fps = c.fps;
+    clips = clips_from_files(c.motions, c.clips, mo);
+  }
+  if (!quiet)
+    std::cerr << "simulate: " << clips.size() << " clips x " << bodies.size() << " bodies = "
+              << clips.size() * bodies.size() << " sequences\n";
+  const bool tty = ::isatty(2) != 0;  // a terminal: one updating line; a log: a line per 10 %
+  o.progress = [quiet, tty](const std::string& phase, int done, int total) {
+    if (quiet) return;
+    const int step = std::max(1, total / (tty ? 100 : 10));
+    if (done % step == 0 || done == total)
+      std::cerr << phase << ": " << done << "/" << total << (phase == "load" ? " clips" : " sequences")
+                << (done == total || !tty ? "\n" : "\r") << std::flush;
+  };
+  const SimulateDatasetSummary r = simulate_dataset(clips, bodies, c.out, o);
+  if (!quiet) {
+    std::fprintf(stderr, "simulate: %d sequences, %lld frames in %.1f s (%.0f frames/s)\n", r.sequences,
+                 r.frames, r.seconds, r.seconds > 0 ? double(r.frames) / r.seconds : 0.0);
+  }
+  std::cout << "wrote " << c.out << "\n";
+}
+
+void setup(CLI::App& app) {
+  auto c = std::make_shared<SimulateCli>();
+  auto* cmd = app.add_subcommand(
+      "simulate",
+      "Simulate every motion clip on every body (retargeted onto the body's height) on a\n"
+      "pressure mat and write the HDF5 dataset (docs/formats.md; options: docs/simulate.md).");
+  cmd->add_option("--motions", c->motions, "BVH files or folders (searched recursively for *.bvh)");
+  cmd->add_option("--clips", c->clips,
+                  "Clips CSV (file,subject,category,take[,metres_per_unit,up]); alone: every clip it lists");
+  cmd->add_flag("--embedded", c->embedded, "Procedural motions (as ptnet demo) instead of BVH files");
+  cmd->add_option("--bodies", c->bodies, "Bodies CSV (id,sex,height_cm,weight_kg[,role])")->required();
+  cmd->add_option("-o,--out", c->out, "Output dataset (.h5)")->required();
+  cmd->add_option("--performers", c->performers, "--embedded: procedural performers")
+      ->capture_default_str()->check(CLI::Range(1, 100));
+  cmd->add_option("--takes", c->takes, "--embedded: takes per performer and category")
+      ->capture_default_str()->check(CLI::Range(1, 10));
+  cmd->add_option("--seconds", c->seconds, "--embedded: seconds per clip")
+      ->capture_default_str()->check(CLI::Range(1.0, 600.0));
+  cmd->add_option("--fps", c->fps, "Frame rate of the dataset (motions are resampled)")
+      ->capture_default_str()->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--seed", c->seed, "Seed of the sensor noise (and of --embedded motions)")->capture_default_str();
+  cmd->add_option("--threads", c->threads, "Threads (0: all cores)")->capture_default_str()->check(CLI::Range(0, 256));
+  cmd->add_option("--placement", c->placement, "fixed: a physical mat; follow: the mat follows the body")
+      ->capture_default_str()->check(CLI::IsMember({"fixed", "follow"}));
+  cmd->add_option("--units", c->units, "BVH units for files the clips CSV does not describe: auto|m|cm|mm|in|cmu")
+      ->capture_default_str();
+  cmd->add_option("--up", c->up, "BVH up axis for files the clips CSV does not describe: y|z")->capture_default_str();
+  cmd->add_option("--rows", c->rows, "Mat rows (along the walking axis)")->capture_default_str()->check(CLI::Range(1, 1000));
+  cmd->add_option("--cols", c->cols, "Mat columns")->capture_default_str()->check(CLI::Range(1, 1000));
+  cmd->add_option("--pitch", c->pitch_m, "Cell size (m)")->capture_default_str()->check(CLI::Range(0.001, 0.2));
+  cmd->add_option("--compliance-mm", c->compliance_mm, "Contact band above the ground (mm)")
+      ->capture_default_str()->check(CLI::Range(1.0, 50.0));
+  cmd->add_option("--subsamples", c->subsamples, "Depth samples per cell side")
+      ->capture_default_str()->check(CLI::Range(1, 16));
+  cmd->add_flag("--ideal-sensor", c->ideal, "No crosstalk, saturation, noise, threshold or quantisation");
+  cmd->add_option("--crosstalk", c->crosstalk, "Fraction leaking to each of 4 neighbours (default 0.02)")
+      ->check(CLI::Range(0.0, 0.24));
+  cmd->add_option("--saturation-kpa", c->saturation_kpa, "Readings clip here (default 600)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--noise-kpa", c->noise_kpa, "Read noise SD (default 0.2)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threshold-kpa", c->threshold_kpa, "Activation threshold (default 1)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--quantum-kpa", c->quantum_kpa, "ADC step, 0: off (default 0.1)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");
+  cmd->callback([c] { run(*c); });
+}
+
+}  // namespace
+PTNET_COMMAND(40, setup);
+}  // namespace ptnet::cli

@@ -1,0 +1,120 @@
+// ptnet/simulate_dataset.hpp: clips x bodies -> retarget -> simulate -> HDF5
+// dataset, the loop behind `ptnet simulate` and `ptnet demo`.
+//
+//   auto clips = ptnet::clips_from_files({"../shared/mocap"}, "../shared/mocap/clips.csv", {});
+//   auto bodies = ptnet::read_bodies_csv("bodies.csv");
+//   ptnet::SimulateDatasetOptions opt;      // 80 x 28 mat, 30 fps, seed 0, all cores
+//   opt.seed = 7;
+//   ptnet::SimulateDatasetSummary s = ptnet::simulate_dataset(clips, bodies, "data.h5", opt);
+//
+//   auto procedural = ptnet::embedded_clips(5, 2, 8.0, /*seed=*/1);  // no files needed
+//
+// Every clip is loaded (BVH) or generated (procedural) once, before anything
+// is simulated, so a missing or malformed file fails the run at once and no
+// output is left. Jobs (clip x body, clip-major) are then retargeted onto the
+// body's height, simulated on `threads` threads and written in chunks of
+// `chunk_jobs`, so memory holds the source clips plus one chunk of retargeted
+// motions and pressure sequences, whatever the size of the run. Sequence i is
+// named "<motion_id>__<body_id>" and seeded with sequence_seed(seed, name):
+// the file is byte-identical for any thread count or chunk size.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ptnet/body_spec.hpp"
+#include "ptnet/data.hpp"
+#include "ptnet/motion.hpp"
+#include "ptnet/sim.hpp"
+
+namespace ptnet {
+
+// One motion to simulate: a BVH file (path non-empty) or a procedural clip.
+struct ClipSource {
+  std::string path;              // BVH file; empty for procedural
+  MotionOptions motion;          // how to read the BVH (units, up axis, fps)
+  GenerateOptions procedural;    // used when path is empty
+  SequenceMeta meta;             // motion_id, performer, category, take, source
+                                 // (name and body_id are filled per body)
+};
+
+// One row of a clips CSV (docs/formats.md): columns file, subject, category,
+// take (required); metres_per_unit and up used when present; other columns
+// (trial, rig, fps, frames) ignored. `file` is relative to the CSV's folder.
+struct ClipRow {
+  std::string file;      // resolved path
+  std::string subject;   // -> performer
+  std::string category;  // walking | rom | freestyle | acting
+  int take = 1;
+  double metres_per_unit = 0;  // 0: not given
+  std::string up;              // "" : not given
+  long line = 0;               // line in the CSV, for messages
+};
+
+// Reads and validates a clips CSV: "clips.csv:3: expected take as a
+// positive integer, found 'x'"; a row whose file does not exist is
+// "clips.csv:5: clip file 'missing.bvh' not found".
+std::vector<ClipRow> read_clips_csv(const std::string& path);
+
+// A category guessed from a file name: the stem contains walk, rom/range/
+// exercise, dance/freestyle or act(ing); "" if none.
+std::string category_from_name(const std::string& path);
+
+// A category guessed from the motion itself: "walking" when the pelvis
+// travels steadily (mean horizontal speed 0.4-2.5 m/s over a path of
+// >= 1.5 m), else "freestyle".
+std::string category_from_motion(const Motion& motion);
+
+// The clips of BVH `inputs` (files, or folders searched recursively for
+// *.bvh, sorted by path). With `clips_csv`, every input must be listed there
+// (error naming the first that is not) and its row supplies the metadata;
+// with no inputs, every row of the CSV is a clip. Without it: motion_id =
+// the file stem, performer = the parent folder's name, category from the
+// name (category_from_name; else "" and guessed from the motion when
+// loaded), take 1. `defaults` gives units, up axis and fps for files the CSV
+// does not describe. Throws Error for a missing input, an empty folder, or
+// two clips with the same motion_id.
+std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
+                                         const std::string& clips_csv, const MotionOptions& defaults);
+
+// The procedural clips of `ptnet demo`: performers x 4 categories x takes,
+// `seconds` long at `fps`, motion_id "p<P>_<category>_t<take>", performer
+// "P<P>", source "procedural:<motion_id>".
+std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds, std::uint64_t seed,
+                                       double fps = 30);
+
+// Loads (BVH) or generates (procedural, at the performer's own height) one
+// clip at `fps`. Throws Error naming the file.
+Motion load_clip(const ClipSource& clip, double fps);
+
+struct SimulateDatasetOptions {
+  SimOptions sim;                 // mat, placement, sensor; sim.seed is replaced per sequence
+  double fps = 30;                // motions are resampled to this rate
+  std::uint64_t seed = 0;         // run seed: sequence_seed(seed, name) per sequence
+  int threads = 0;                // 0: hardware concurrency
+  int chunk_jobs = 0;             // jobs per chunk; 0: 8 x threads (at least 16)
+  bool force = false;             // overwrite an existing output
+  std::string generator = "ptnet simulate";
+  std::string config_json;        // "" : built from the options
+  // Called as work completes: (phase, done, total); phase "load" for clips,
+  // "simulate" for sequences. Calls are serialised but may come from worker
+  // threads.
+  std::function<void(const std::string& phase, int done, int total)> progress;
+};
+
+struct SimulateDatasetSummary {
+  int clips = 0, bodies = 0, sequences = 0;
+  long long frames = 0;        // simulated frames, all sequences
+  double seconds = 0;          // wall time of the whole run
+  std::vector<std::string> categories;  // category of each clip, after guessing
+};
+
+// Simulates every clip on every body and writes the dataset (docs/formats.md)
+// to `out_path` atomically (nothing is left on error). Throws Error.
+SimulateDatasetSummary simulate_dataset(const std::vector<ClipSource>& clips,
+                                        const std::vector<BodySpec>& bodies, const std::string& out_path,
+                                        const SimulateDatasetOptions& options);
+
+}  // namespace ptnet

@@ -1,0 +1,254 @@
+// The list of clips to simulate: a clips CSV, BVH files and folders, or the
+// embedded procedural motions; loading one clip.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/simulate_dataset.hpp"
+
+namespace ptnet {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string trim(const std::string& s) {
+  std::size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) out.push_back(trim(field));
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+bool is_bvh(const fs::path& p) { return lower(p.extension().string()) == ".bvh"; }
+
+// A path key for matching --motions files against clips.csv rows.
+std::string key_of(const std::string& path) {
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  return p.lexically_normal().string();
+}
+
+}  // namespace
+
+std::vector<ClipRow> read_clips_csv(const std::string& path) {
+  const std::string text = read_text_file(path);
+  const fs::path folder = fs::path(path).parent_path();
+  std::istringstream in(text);
+  std::string line;
+  long number = 0;
+  std::map<std::string, int> column;
+  std::vector<ClipRow> rows;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (trim(line).empty() || trim(line)[0] == '#') continue;
+    const auto f = split_csv(line);
+    if (column.empty()) {
+      for (std::size_t i = 0; i < f.size(); ++i) column[lower(f[i])] = int(i);
+      for (const char* need : {"file", "subject", "category", "take"})
+        if (!column.count(need))
+          throw Error::at(path, number, "a header with columns file,subject,category,take", quote(trim(line)));
+      continue;
+    }
+    if (f.size() != column.size())
+      throw Error::at(path, number, std::to_string(column.size()) + " columns", std::to_string(f.size()));
+    auto get = [&](const char* name) {
+      auto it = column.find(name);
+      return it == column.end() ? std::string() : f[std::size_t(it->second)];
+    };
+    ClipRow r;
+    r.line = number;
+    const std::string file = get("file");
+    if (file.empty()) throw Error::at(path, number, "a file name", "an empty field");
+    r.file = (fs::path(file).is_absolute() ? fs::path(file) : folder / file).lexically_normal().string();
+    r.subject = get("subject");
+    r.category = get("category");
+    try {
+      parse_category(r.category);
+    } catch (const Error&) {
+      throw Error::at(path, number, "category walking, rom, freestyle or acting", quote(r.category));
+    }
+    const std::string take = get("take");
+    std::size_t used = 0;
+    int t = 0;
+    try {
+      t = std::stoi(take, &used);
+    } catch (...) {
+      used = 0;
+    }
+    if (used != take.size() || take.empty() || t < 1)
+      throw Error::at(path, number, "take as a positive integer", quote(take));
+    r.take = t;
+    const std::string mpu = get("metres_per_unit");
+    if (!mpu.empty()) {
+      char* end = nullptr;
+      r.metres_per_unit = std::strtod(mpu.c_str(), &end);
+      if (end != mpu.c_str() + mpu.size() || !(r.metres_per_unit > 0) || !std::isfinite(r.metres_per_unit))
+        throw Error::at(path, number, "metres_per_unit as a positive number", quote(mpu));
+    }
+    r.up = lower(get("up"));
+    if (!r.up.empty() && r.up != "y" && r.up != "z")
+      throw Error::at(path, number, "up y or z", quote(get("up")));
+    std::error_code ec;
+    if (!fs::is_regular_file(r.file, ec))
+      throw Error(path + ":" + std::to_string(number) + ": clip file " + quote(file) + " not found");
+    rows.push_back(r);
+  }
+  if (column.empty()) throw Error::in(path, "empty clips CSV, expected a header file,subject,category,take");
+  return rows;
+}
+
+std::string category_from_name(const std::string& path) {
+  const std::string s = lower(fs::path(path).stem().string());
+  auto has = [&](const char* w) { return s.find(w) != std::string::npos; };
+  if (has("walk")) return "walking";
+  if (has("rom") || has("range") || has("exercise")) return "rom";
+  if (has("dance") || has("freestyle")) return "freestyle";
+  if (has("acting") || has("act_") || has("_act")) return "acting";
+  return "";
+}
+
+std::string category_from_motion(const Motion& motion) {
+  const int T = motion.size();
+  if (T < 2 || !(motion.fps > 0)) return "freestyle";
+  double path = 0;
+  for (int t = 1; t < T; ++t)
+    path += (motion.frames[t][kPelvis] - motion.frames[t - 1][kPelvis]).head<2>().norm();
+  const double speed = path / ((T - 1) / motion.fps);
+  return speed >= 0.4 && speed <= 2.5 && path >= 1.5 ? "walking" : "freestyle";
+}
+
+std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs, const std::string& clips_csv,
+                                         const MotionOptions& defaults) {
+  // Expand the inputs into BVH files.
+  std::vector<std::string> files;
+  for (const auto& in : inputs) {
+    std::error_code ec;
+    if (fs::is_directory(in, ec)) {
+      std::vector<std::string> found;
+      for (auto it = fs::recursive_directory_iterator(in, ec); !ec && it != fs::recursive_directory_iterator();
+           it.increment(ec))
+        if (it->is_regular_file(ec) && is_bvh(it->path())) found.push_back(it->path().lexically_normal().string());
+      if (ec) throw Error::in(in, "cannot list folder: " + ec.message());
+      if (found.empty()) throw Error::in(in, "folder holds no .bvh files");
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (fs::exists(in, ec)) {
+      files.push_back(in);
+    } else {
+      throw Error::in(in, "no such file");
+    }
+  }
+
+  std::vector<ClipSource> clips;
+  auto make = [&](const std::string& file) {
+    ClipSource c;
+    c.path = file;
+    c.motion = defaults;
+    c.meta.source = file;
+    c.meta.motion_id = fs::path(file).stem().string();
+    return c;
+  };
+  if (!clips_csv.empty()) {
+    const std::vector<ClipRow> rows = read_clips_csv(clips_csv);
+    std::map<std::string, const ClipRow*> by_key;
+    for (const auto& r : rows) by_key.emplace(key_of(r.file), &r);
+    auto from_row = [&](const std::string& file, const ClipRow& r) {
+      ClipSource c = make(file);
+      c.meta.performer = r.subject;
+      c.meta.category = r.category;
+      c.meta.take = r.take;
+      if (r.metres_per_unit > 0) c.motion.metres_per_unit = r.metres_per_unit;
+      if (!r.up.empty()) c.motion.up = parse_up_axis(r.up);
+      return c;
+    };
+    if (inputs.empty()) {
+      for (const auto& r : rows) clips.push_back(from_row(r.file, r));
+    } else {
+      for (const auto& f : files) {
+        auto it = by_key.find(key_of(f));
+        if (it == by_key.end()) throw Error::in(f, "not listed in " + clips_csv);
+        clips.push_back(from_row(f, *it->second));
+      }
+    }
+  } else {
+    if (files.empty()) throw Error("simulate: no motions given");
+    for (const auto& f : files) {
+      ClipSource c = make(f);
+      const std::string stem = fs::path(f).stem().string();
+      const std::size_t us = stem.find('_');
+      c.meta.performer = us != std::string::npos && us > 0 ? stem.substr(0, us) : stem;
+      c.meta.category = category_from_name(f);  // "" : guessed from the motion when loaded
+      c.meta.take = 1;
+      clips.push_back(c);
+    }
+  }
+  std::map<std::string, std::string> seen;
+  for (const auto& c : clips) {
+    auto [it, fresh] = seen.emplace(c.meta.motion_id, c.meta.source);
+    if (!fresh)
+      throw Error::in(c.meta.source, "motion id '" + c.meta.motion_id + "' also used by " + it->second +
+                                         " (file stems must be unique)");
+  }
+  return clips;
+}
+
+std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds, std::uint64_t seed,
+                                       double fps) {
+  if (performers < 1 || takes < 1) throw Error("embedded clips: performers and takes must be >= 1");
+  std::vector<ClipSource> clips;
+  for (int p = 1; p <= performers; ++p)
+    for (Category cat : kCategories)
+      for (int take = 1; take <= takes; ++take) {
+        ClipSource c;
+        c.procedural.category = cat;
+        c.procedural.performer = p;
+        c.procedural.take = take;
+        c.procedural.seconds = seconds;
+        c.procedural.fps = fps;
+        c.procedural.seed = seed;
+        c.meta.motion_id = "p" + std::to_string(p) + "_" + category_name(cat) + "_t" + std::to_string(take);
+        c.meta.performer = "P" + std::to_string(p);
+        c.meta.category = category_name(cat);
+        c.meta.take = take;
+        c.meta.source = "procedural:" + c.meta.motion_id;
+        clips.push_back(std::move(c));
+      }
+  return clips;
+}
+
+Motion load_clip(const ClipSource& clip, double fps) {
+  if (clip.path.empty()) {
+    GenerateOptions g = clip.procedural;
+    g.fps = fps;
+    Motion m = generate_motion(g);
+    m.name = clip.meta.motion_id;
+    return m;
+  }
+  MotionOptions o = clip.motion;
+  o.fps = fps;
+  Motion m = load_motion(clip.path, o);
+  if (m.size() == 0) throw Error::in(clip.path, "no frames");
+  return m;
+}
+
+}  // namespace ptnet

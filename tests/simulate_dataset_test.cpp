@@ -1,0 +1,145 @@
+// simulate_dataset() and the clip lists behind `ptnet simulate`: the file
+// does not depend on threads or chunking; sequence metadata; clips CSV
+// parsing and its one-line errors; category guesses.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/simulate_dataset.hpp"
+
+namespace fs = std::filesystem;
+
+namespace ptnet {
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void spit(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+class SimulateDataset : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("ptnet_simulate_dataset_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+const std::vector<BodySpec> kBodies{{"f1", Sex::female, 158, 55, "retargeted"}, {"m1", Sex::male, 188, 90, "original"}};
+
+TEST_F(SimulateDataset, SameFileWhateverThreadsAndChunks) {
+  const auto clips = embedded_clips(1, 1, 2.0, 4);
+  ASSERT_EQ(clips.size(), 4u);
+  SimulateDatasetOptions a;
+  a.seed = 9;
+  a.threads = 1;
+  a.chunk_jobs = 1;
+  SimulateDatasetOptions b = a;
+  b.threads = 2;
+  b.chunk_jobs = 0;
+  const auto sa = simulate_dataset(clips, kBodies, (dir_ / "a.h5").string(), a);
+  simulate_dataset(clips, kBodies, (dir_ / "b.h5").string(), b);
+  EXPECT_EQ(sa.sequences, 8);
+  EXPECT_EQ(sa.frames, 8 * 60);
+  EXPECT_EQ(slurp(dir_ / "a.h5"), slurp(dir_ / "b.h5"));
+
+  const Dataset d = Dataset::open((dir_ / "a.h5").string());
+  EXPECT_EQ(d.info().generator, "ptnet simulate");
+  EXPECT_NE(d.info().config_json.find("\"seed\":9"), std::string::npos) << d.info().config_json;
+  ASSERT_EQ(d.sequences().size(), 8u);
+  const SequenceMeta& m = d.sequence("p1_walking_t1__m1");
+  EXPECT_EQ(m.body_id, "m1");
+  EXPECT_EQ(m.motion_id, "p1_walking_t1");
+  EXPECT_EQ(m.performer, "P1");
+  EXPECT_EQ(m.category, "walking");
+  EXPECT_EQ(m.take, 1);
+  EXPECT_EQ(m.source, "procedural:p1_walking_t1");
+  EXPECT_EQ(m.frames, 60);
+  EXPECT_EQ(d.body("m1").role, "original");
+
+  // Refuses to overwrite; nothing left on error.
+  EXPECT_EQ(error_of([&] { simulate_dataset(clips, kBodies, (dir_ / "a.h5").string(), a); }),
+            (dir_ / "a.h5").string() + ": exists; pass --force to overwrite");
+  EXPECT_EQ(error_of([&] { simulate_dataset(clips, {}, (dir_ / "c.h5").string(), a); }),
+            "simulate: no bodies to simulate on");
+  EXPECT_FALSE(fs::exists(dir_ / "c.h5"));
+}
+
+TEST_F(SimulateDataset, ClipsCsvRowsAndErrors) {
+  spit(dir_ / "w.bvh", "x");
+  spit(dir_ / "clips.csv", "take,file,category,subject,up,metres_per_unit\n2,w.bvh,walking,7,z,0.01\n");
+  const auto rows = read_clips_csv((dir_ / "clips.csv").string());
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].file, (dir_ / "w.bvh").string());
+  EXPECT_EQ(rows[0].subject, "7");
+  EXPECT_EQ(rows[0].take, 2);
+  EXPECT_EQ(rows[0].up, "z");
+  EXPECT_DOUBLE_EQ(rows[0].metres_per_unit, 0.01);
+  const auto clips = clips_from_files({(dir_ / "w.bvh").string()}, (dir_ / "clips.csv").string(), {});
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].meta.motion_id, "w");
+  EXPECT_EQ(clips[0].meta.performer, "7");
+  EXPECT_EQ(clips[0].motion.up, UpAxis::z);
+  EXPECT_DOUBLE_EQ(clips[0].motion.metres_per_unit, 0.01);
+
+  const std::string csv = (dir_ / "bad.csv").string();
+  spit(csv, "file,subject,category,take\nw.bvh,1,walking,x\n");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: expected take as a positive integer, found 'x'");
+  spit(csv, "file,subject,category,take\nw.bvh,1,jogging,1\n");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }),
+            csv + ":2: expected category walking, rom, freestyle or acting, found 'jogging'");
+  spit(csv, "file,subject,take\n");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }),
+            csv + ":1: expected a header with columns file,subject,category,take, found 'file,subject,take'");
+  spit(csv, "file,subject,category,take\ngone.bvh,1,walking,1\n");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'gone.bvh' not found");
+
+  // Without a CSV: stems must be unique across folders.
+  fs::create_directories(dir_ / "a");
+  fs::create_directories(dir_ / "b");
+  spit(dir_ / "a" / "s_01.bvh", "x");
+  spit(dir_ / "b" / "s_01.bvh", "x");
+  EXPECT_NE(error_of([&] { clips_from_files({dir_.string() + "/a", dir_.string() + "/b"}, "", {}); })
+                .find("motion id 's_01' also used by"),
+            std::string::npos);
+  const auto one = clips_from_files({(dir_ / "a").string()}, "", {});
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].meta.performer, "s");
+  EXPECT_EQ(one[0].meta.take, 1);
+}
+
+TEST(SimulateDatasetCategories, FromNames) {
+  EXPECT_EQ(category_from_name("/x/subject5_walk_fast.bvh"), "walking");
+  EXPECT_EQ(category_from_name("Range_of_motion.bvh"), "rom");
+  EXPECT_EQ(category_from_name("salsa_dance.bvh"), "freestyle");
+  EXPECT_EQ(category_from_name("002_01.bvh"), "");
+  GenerateOptions g;
+  g.seconds = 6;
+  EXPECT_EQ(category_from_motion(generate_motion(g)), "walking");
+  g.category = Category::rom;
+  EXPECT_EQ(category_from_motion(generate_motion(g)), "freestyle");
+}
+
+}  // namespace
+}  // namespace ptnet
