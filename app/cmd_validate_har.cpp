@@ -23,6 +23,7 @@ struct ValidateHarOptions {
   int stride = 5;
   int synthetic_bodies = ptnet::har::HarOptions{}.synthetic_bodies;
   int transfer_stride = 15;
+  int threads = 1;
   int pca = 4;
   int epochs = ptnet::har::ClassifierOptions{}.epochs;
   double bandwidth = 0;
@@ -93,11 +94,13 @@ void run(const ValidateHarOptions& o) {
   ptnet::TransferOptions to;
   to.stride = o.transfer_stride;
   to.device = o.device;
+  to.threads = o.threads;  // torch::set_num_threads: the classifiers too
   ptnet::Transfer transfer(o.model, to);
   if (!quiet)
     std::cerr << "validate-har: real " << o.real << ", model " << o.model << ", train "
               << o.train_subjects << ", test " << o.test_subjects << ", runs " << o.runs
-              << ", stride " << o.stride << ", transfer stride " << o.transfer_stride << "\n";
+              << ", stride " << o.stride << ", transfer stride " << o.transfer_stride << ", threads "
+              << o.threads << "\n";
 
   const ptnet::har::HarResult r = ptnet::har::validate_har(
       real,
@@ -160,6 +163,11 @@ void setup(CLI::App& app) {
   c->add_option("--seed", o->seed, "Seed of run 1 (run r uses seed + r - 1) and of body sampling")
       ->capture_default_str();
   c->add_option("--device", o->device, "cpu | cuda | cuda:N")->capture_default_str();
+  c->add_option("--threads", o->threads,
+                "CPU threads of the transfer model and the classifiers (1: measured fastest for "
+                "these small networks, docs/results.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
   c->add_flag("--no-categories", o->no_categories,
               "Skip the classifiers trained on the dataset's category labels");
   c->add_option("--out", o->out, "Output folder (results.json, confusion.png)")
