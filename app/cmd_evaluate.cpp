@@ -20,7 +20,7 @@ struct EvaluateCli {
   std::string model, data, out = "report";
   double threshold_kpa = 0.5;
   int stride = 5, threads = 0;
-  bool force = false;
+  bool force = false, raw = false;
 };
 
 void run(const EvaluateCli& c) {
@@ -28,6 +28,7 @@ void run(const EvaluateCli& c) {
   const Dataset dataset = Dataset::open(c.data);
   TransferOptions to;
   to.stride = c.stride;
+  to.raw = c.raw;
   to.threads = c.threads;
   const Transfer net(c.model, to);
   const TransferFn model = [&](const PressureSequence& s, const BodySpec& a, const BodySpec& b) {
@@ -62,6 +63,7 @@ void setup(CLI::App& app) {
   cmd->add_option("--out", c->out, "Report folder")->capture_default_str();
   cmd->add_option("--stride", c->stride, "Frames between transfer windows (averaged)")->capture_default_str();
   cmd->add_option("--threads", c->threads, "Torch threads (0: default)")->capture_default_str();
+  cmd->add_flag("--raw", c->raw, "Raw network output: skip the model's fitted contact threshold");
   cmd->add_flag("--force", c->force, "Overwrite existing report files");
   cmd->callback([c] { run(*c); });
 }

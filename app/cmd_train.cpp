@@ -13,13 +13,13 @@ namespace ptnet::cli {
 namespace {
 
 struct TrainCli {
-  std::string data, out, preset = "paper", device = "cpu", arch, channels, loss, init;
-  int epochs = 0, batch = 0, patience = 0, threads = -1, stride = 0, hidden = 0, latent = 0;
+  std::string data, out, preset = "paper", device = "cpu", arch, align, channels, loss, init;
+  int epochs = 0, batch = 0, micro_batch = 0, patience = 0, threads = -1, stride = 0, hidden = 0, latent = 0;
   int lr_halve_every = 0;
   long long samples_per_epoch = -1, val_samples = -1;
   double lr = 0, cache_mb = 0;
   long long seed = -1;
-  bool resume = false, force = false, identity_pairs = false;
+  bool resume = false, force = false, no_contact_threshold = false, identity_pairs = false;
 };
 
 std::array<int, 3> parse_channels(const std::string& text) {
@@ -46,6 +46,7 @@ void run(const TrainCli& c) {
   TrainOptions o = TrainOptions::from_preset(c.preset);
   if (c.epochs) o.epochs = c.epochs;
   if (c.batch) o.batch = c.batch;
+  if (c.micro_batch) o.micro_batch = c.micro_batch;
   if (c.lr) o.lr = c.lr;
   if (c.lr_halve_every) o.lr_halve_every = c.lr_halve_every;
   if (c.patience) o.patience = c.patience;
@@ -56,6 +57,7 @@ void run(const TrainCli& c) {
   if (c.val_samples >= 0) o.val_samples = c.val_samples;
   if (c.cache_mb > 0) o.cache_mb = c.cache_mb;
   if (!c.arch.empty()) o.model.arch = parse_arch(c.arch);
+  if (!c.align.empty()) o.model.align = parse_align(c.align);
   if (!c.channels.empty()) o.model.channels = parse_channels(c.channels);
   if (c.hidden) o.model.hidden = c.hidden;
   if (c.latent) o.model.latent = c.latent;
@@ -68,6 +70,7 @@ void run(const TrainCli& c) {
   o.init = c.init;
   o.identity_pairs = c.identity_pairs;
   o.resume = c.resume;
+  o.fit_contact_threshold = !c.no_contact_threshold;
   o.force = c.force;
   o.quiet = globals().quiet;
   if (o.resume && !o.init.empty()) throw Error("--resume and --init exclude each other");
@@ -91,6 +94,8 @@ void setup(CLI::App& app) {
   cmd->add_option("--preset", opt->preset, "paper | fast")->capture_default_str();
   cmd->add_option("--epochs", opt->epochs, "Maximum epochs");
   cmd->add_option("--batch", opt->batch, "Windows per optimiser step");
+  cmd->add_option("--micro-batch", opt->micro_batch,
+                  "Windows per forward/backward pass (gradients accumulated up to --batch; default 64)");
   cmd->add_option("--lr", opt->lr, "Initial Adam learning rate");
   cmd->add_option("--lr-halve-every", opt->lr_halve_every, "Epochs between learning-rate halvings");
   cmd->add_option("--patience", opt->patience, "Early stop after this many epochs without improvement");
@@ -100,12 +105,17 @@ void setup(CLI::App& app) {
   cmd->add_option("--stride", opt->stride, "Frames between window starts");
   cmd->add_option("--samples-per-epoch", opt->samples_per_epoch, "Training windows per epoch (0 = all)");
   cmd->add_option("--val-samples", opt->val_samples, "Validation windows (0 = all)");
-  cmd->add_option("--arch", opt->arch, "faithful (the paper's) | skip (U-Net skip connections)");
+  cmd->add_option("--arch", opt->arch, "faithful (the paper's) | skip (U-Net skip connections) | residual (skip, learns a correction to the source)");
+  cmd->add_option("--align", opt->align,
+                  "none (the paper's) | zoom (input aligned to the target body: zoomed by the height ratio "
+                  "about the mat centre, scaled by weight over area ratio)");
   cmd->add_option("--channels", opt->channels, "Conv widths of the three blocks, e.g. 64,128,256");
   cmd->add_option("--hidden", opt->hidden, "Width of the FC layer after the convolutions (128)");
   cmd->add_option("--latent", opt->latent, "Latent width (128)");
   cmd->add_option("--loss", opt->loss, "mse (the paper's content loss) | mse+force (adds total-force error)");
   cmd->add_option("--cache-mb", opt->cache_mb, "Budget of the whole-sequence cache (default 1024)");
+  cmd->add_flag("--no-contact-threshold", opt->no_contact_threshold,
+                "Do not fit the output activation threshold (raw network output, as in the paper)");
   cmd->add_flag("--resume", opt->resume, "Continue from OUT/checkpoint.pt");
   cmd->add_option("--init", opt->init, "Start from this model folder's weights (fine-tuning)");
   cmd->add_flag("--identity-pairs", opt->identity_pairs,

@@ -21,7 +21,7 @@ namespace {
 struct TransferCli {
   std::string model, in, sequence, source, target, out, device = "cpu";
   int stride = 5, threads = 0;
-  bool force = false;
+  bool force = false, raw = false;
 };
 
 bool ends_with(const std::string& s, const std::string& suffix) {
@@ -61,6 +61,7 @@ void run(const TransferCli& c) {
   check_output_path(c.out, c.force);
   TransferOptions to;
   to.stride = c.stride;
+  to.raw = c.raw;
   to.threads = c.threads;
   to.device = c.device;
   Transfer net(c.model, to);
@@ -131,6 +132,7 @@ void setup(CLI::App& app) {
   cmd->add_option("--stride", opt->stride, "Frames between window starts (1 = every window)")->capture_default_str();
   cmd->add_option("--threads", opt->threads, "CPU threads (0 = LibTorch default)");
   cmd->add_option("--device", opt->device, "cpu | cuda")->capture_default_str();
+  cmd->add_flag("--raw", opt->raw, "Raw network output: skip the model's fitted contact threshold");
   cmd->add_flag("--force", opt->force, "Overwrite the output");
   cmd->callback([opt]() { run(*opt); });
 }

@@ -81,6 +81,31 @@ TEST(Metrics, WeightRatioBaselineScales) {
   EXPECT_THROW(weight_ratio_baseline(s, 0, 75), Error);
 }
 
+TEST(Metrics, BodyScaleBaselineZoomsAboutTheCentreAndKeepsForceRatio) {
+  // 80 x 28 mat, centre at (39.5, 13.5). A foot-sized 12 x 6 blob at rows
+  // 54-65, cols 11-16 (centre 59.5, 13.5: 20 cells from the mat centre) on a
+  // body 1.25 times as tall lands 25 cells from the centre; total force
+  // scales with weight (up to the bilinear resampling of the blob's edges).
+  PressureSequence s(MatSpec{}, 1, 30);
+  for (int r = 54; r <= 65; ++r)
+    for (int c = 11; c <= 16; ++c) s.at(0, r, c) = 100;
+  const BodySpec a{"a", Sex::female, 160, 60}, b{"b", Sex::male, 200, 90};
+  const PressureSequence z = body_scale_baseline(s, a, b);
+  double force_in = 0, force_out = 0, row_moment = 0;
+  for (int r = 0; r < 80; ++r)
+    for (int c = 0; c < 28; ++c) {
+      force_in += s.at(0, r, c);
+      force_out += z.at(0, r, c);
+      row_moment += z.at(0, r, c) * r;
+    }
+  EXPECT_NEAR(force_out / force_in, 90.0 / 60.0, 0.03);
+  EXPECT_NEAR(row_moment / force_out, 39.5 + 1.25 * 20, 0.05);
+  // Same height and weight: the identity.
+  const PressureSequence same = body_scale_baseline(s, a, a);
+  for (std::size_t i = 0; i < s.kpa.size(); ++i) ASSERT_FLOAT_EQ(same.kpa[i], s.kpa[i]);
+  EXPECT_THROW(zoom_about_centre(s, 0.0, 1.0), Error);
+}
+
 TEST(Metrics, ShapeMismatchIsAnError) {
   EXPECT_THROW(compare(blank(1), blank(2), {}), Error);
 }

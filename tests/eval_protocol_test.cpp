@@ -60,7 +60,7 @@ TEST(Protocol, OracleModelIsPerfectAndBaselinesAreNot) {
     EXPECT_EQ(done, calls);
   };
   const auto rows = evaluate_pairs(d, oracle, options);
-  ASSERT_EQ(rows.size(), 36u);
+  ASSERT_EQ(rows.size(), 48u);
   EXPECT_EQ(calls, 12);
   for (const auto& r : rows) {
     if (r.method == "model") {

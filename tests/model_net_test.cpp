@@ -1,6 +1,7 @@
 // PressureTransferNet: shapes, parameter count, non-negative output, one
 // optimiser step lowers the loss, weights round-trip, config validation.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -30,9 +31,9 @@ TEST(ModelNet, PooledSizesHalveWithCeiling) {
   EXPECT_EQ(pooled_size(c, 3), (std::array<int, 2>{10, 4}));
 }
 
-TEST(ModelNet, OutputShapeAndNonNegativeBothArchitectures) {
+TEST(ModelNet, OutputShapeAndNonNegativeEveryArchitecture) {
   torch::manual_seed(0);
-  for (Arch arch : {Arch::faithful, Arch::skip}) {
+  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual}) {
     PressureTransferNet net(small(arch));
     auto x = torch::rand({3, 30, 80, 28});
     auto a = torch::randn({3, 3});
@@ -43,7 +44,7 @@ TEST(ModelNet, OutputShapeAndNonNegativeBothArchitectures) {
 }
 
 TEST(ModelNet, ParameterCountMatchesClosedForm) {
-  for (Arch arch : {Arch::faithful, Arch::skip}) {
+  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual}) {
     ModelConfig c = small(arch);
     PressureTransferNet net(c);
     EXPECT_EQ(parameter_count(*net), parameter_count(c)) << arch_name(arch);
@@ -77,7 +78,7 @@ TEST(ModelNet, WrongInputShapeIsAClearError) {
 
 TEST(ModelNet, OneAdamStepLowersTheLossOnAFixedBatch) {
   torch::manual_seed(1);
-  for (Arch arch : {Arch::faithful, Arch::skip}) {
+  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual}) {
     PressureTransferNet net(small(arch));
     net->train();
     auto x = torch::rand({8, 30, 80, 28});
@@ -94,7 +95,7 @@ TEST(ModelNet, OneAdamStepLowersTheLossOnAFixedBatch) {
 }
 
 TEST(ModelNet, WeightsRoundTripAndMismatchIsAClearError) {
-  auto dir = std::filesystem::temp_directory_path() / "ptnet_model_net_test";
+  auto dir = std::filesystem::temp_directory_path() / ("ptnet_model_net_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "w.pt").string();
   torch::manual_seed(2);
@@ -133,6 +134,26 @@ TEST(ModelNet, ConfigValidation) {
   }
   EXPECT_THROW(parse_arch("unet"), Error);
   EXPECT_EQ(parse_arch("skip"), Arch::skip);
+  EXPECT_EQ(parse_arch("residual"), Arch::residual);
+  EXPECT_EQ(model_config_from_json(to_json(small(Arch::residual)), "config.json").arch, Arch::residual);
+}
+
+TEST(ModelNet, ResidualWithAZeroDecoderCopiesTheSource) {
+  // output = ReLU(input + decoder): with the last layer zeroed the network is
+  // the copy baseline, whatever the attributes; the other architectures are not.
+  torch::manual_seed(3);
+  auto x = torch::rand({2, 30, 80, 28});
+  auto a = torch::randn({2, 3});
+  for (Arch arch : {Arch::residual, Arch::skip}) {
+    PressureTransferNet net(small(arch));
+    net->eval();
+    torch::NoGradGuard no_grad;
+    for (auto& item : net->named_parameters())
+      if (item.key().rfind("deconv1.", 0) == 0) item.value().zero_();
+    const float diff = (net->forward(x, a, a.flip(0)) - x).abs().max().item<float>();
+    if (arch == Arch::residual) EXPECT_EQ(diff, 0.0f);
+    else EXPECT_GT(diff, 0.1f);
+  }
 }
 
 TEST(ModelNet, FlopsOfThePaperNetwork) {

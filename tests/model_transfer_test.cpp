@@ -2,7 +2,9 @@
 // windows averaged, and clear errors for bad model folders and inputs; the
 // .npy reader/writer.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -20,7 +22,7 @@ namespace {
 class TransferTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / "ptnet_model_transfer_test";
+    dir_ = fs::temp_directory_path() / ("ptnet_model_transfer_test_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     src_ = new MemorySource(synth_source(3, 2, 90));
     train(*src_, dir_.string(), synth_options(1));
@@ -40,7 +42,7 @@ class TransferTest : public ::testing::Test {
   }
   // A copy of the model folder that a test may damage.
   static fs::path copy_model(const std::string& name) {
-    fs::path p = fs::temp_directory_path() / ("ptnet_model_transfer_" + name);
+    fs::path p = fs::temp_directory_path() / ("ptnet_model_transfer_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     fs::copy(dir_, p);
     return p;
@@ -77,6 +79,48 @@ TEST_F(TransferTest, OverlappingWindowsAreAveraged) {
   head.kpa.resize(std::size_t(30) * in.mat.cells());
   PressureSequence a = net.run(in, female_, male_), b = net.run(head, female_, male_);
   for (int c = 0; c < in.mat.cells(); ++c) EXPECT_NEAR(a.frame(0)[c], b.frame(0)[c], 1e-4);
+}
+
+TEST_F(TransferTest, ContactThresholdZeroesOnlyWeakCells) {
+  // Training fits the output activation threshold from its candidates.
+  const double fitted = read_model_dir(dir_.string()).norm.contact_threshold_kpa;
+  EXPECT_GE(fitted, kContactKpa);
+  EXPECT_LE(fitted, 40.0);
+
+  // A folder whose threshold is the median non-zero raw output: thresholded
+  // output = raw where raw >= t, else 0; both sides of t occur.
+  TransferOptions raw_opt;
+  raw_opt.raw = true;
+  PressureSequence in = synth_sequence(2, female_, 45, src_->mat());
+  const PressureSequence raw = Transfer(dir_.string(), raw_opt).run(in, female_, male_);
+  std::vector<float> positive;
+  for (float v : raw.kpa)
+    if (v > 0) positive.push_back(v);
+  ASSERT_GT(positive.size(), 10u);
+  std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
+  const float t = positive[positive.size() / 2];
+  fs::path p = copy_model("threshold");
+  auto j = nlohmann::json::parse(std::ifstream(p / "config.json"));
+  j["normalisation"]["contact_threshold_kpa"] = t;
+  std::ofstream(p / "config.json") << j.dump();
+  const PressureSequence cut = Transfer(p.string()).run(in, female_, male_);
+  int zeroed = 0, kept = 0;
+  for (std::size_t i = 0; i < raw.kpa.size(); ++i) {
+    if (raw.kpa[i] >= t) {
+      ASSERT_EQ(cut.kpa[i], raw.kpa[i]);
+      ++kept;
+    } else {
+      ASSERT_EQ(cut.kpa[i], 0.0f);
+      zeroed += raw.kpa[i] > 0;
+    }
+  }
+  EXPECT_GT(zeroed, 0);
+  EXPECT_GT(kept, 0);
+  j["normalisation"]["contact_threshold_kpa"] = -1;
+  std::ofstream(p / "config.json") << j.dump();
+  EXPECT_EQ(expect_error([&] { Transfer(p.string()); }),
+            (p / "config.json").string() + ": normalisation.contact_threshold_kpa must be >= 0");
+  fs::remove_all(p);
 }
 
 TEST_F(TransferTest, BadInputsAreClearErrors) {
@@ -126,7 +170,7 @@ TEST_F(TransferTest, BrokenModelFoldersAreClearErrors) {
 }
 
 TEST(Npy, RoundTripAndValidation) {
-  fs::path dir = fs::temp_directory_path() / "ptnet_npy_test";
+  fs::path dir = fs::temp_directory_path() / ("ptnet_npy_test_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   MatSpec mat{5, 3, 0.02};

@@ -1,6 +1,7 @@
 // End to end through the real binary: `ptnet train` on a small synthetic
 // dataset file, then `ptnet transfer` to .npy and .h5, and the CLI's errors.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -23,7 +24,7 @@ struct CmdResult {
 };
 
 CmdResult run(const std::string& args) {
-  const fs::path err = fs::temp_directory_path() / "ptnet_train_cli_smoke.err";
+  const fs::path err = fs::temp_directory_path() / ("ptnet_train_cli_smoke_" + std::to_string(::getpid()) + ".err");
   const std::string cmd = std::string(PTNET_BINARY) + " " + args + " 2> " + err.string() + " > /dev/null";
   int status = std::system(cmd.c_str());
   std::ifstream f(err);
@@ -33,7 +34,7 @@ CmdResult run(const std::string& args) {
 class CliSmoke : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / "ptnet_train_cli_smoke";
+    dir_ = fs::temp_directory_path() / ("ptnet_train_cli_smoke_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     MemorySource src = ptnet::testing::synth_source(4, 2, 90);

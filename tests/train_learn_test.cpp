@@ -3,6 +3,7 @@
 // uninterrupted run; a NaN loss stops with a clear error; the output folder
 // is never clobbered without --force.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path temp_dir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("ptnet_train_learn_" + name);
+  fs::path p = fs::temp_directory_path() / ("ptnet_train_learn_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(p);
   return p;
 }

@@ -60,10 +60,15 @@ SequenceMetrics compare(const PressureSequence& predicted, const PressureSequenc
 PressureSequence copy_baseline(const PressureSequence& source);
 PressureSequence weight_ratio_baseline(const PressureSequence& source, double source_weight_kg,
                                        double target_weight_kg);
+// A third, geometric baseline (ours): the source zoomed by the height ratio
+// about the mat centre and scaled by the weight ratio over the area ratio
+// (zoom_about_centre in pressure.hpp) -- what body scale alone explains.
+PressureSequence body_scale_baseline(const PressureSequence& source, const BodySpec& source_body,
+                                     const BodySpec& target_body);
 
 // One evaluated (source -> target) pair on one motion, for one method.
 struct EvalRow {
-  std::string method;    // "model", "copy", "weight_ratio"
+  std::string method;    // "model", "copy", "weight_ratio", "body_scale"
   std::string motion_id;
   std::string category;  // walking | rom | freestyle | acting
   int take = 1;          // 1 = seen motion, 2 = unseen
@@ -128,8 +133,8 @@ PairData load_pair(const Dataset& dataset, const TestPair& pair);
 // a deterministic order (by motion, then source, then target).
 std::vector<TestPair> test_pairs(const Dataset& dataset);
 
-// Evaluates every test pair with the model and the two baselines: three
-// EvalRows per pair (methods "model", "copy", "weight_ratio"). Throws Error if
+// Evaluates every test pair with the model and the three baselines: four
+// EvalRows per pair (methods "model", "copy", "weight_ratio", "body_scale"). Throws Error if
 // the dataset has no test pairs (it needs >= 2 original bodies).
 std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& model,
                                     const EvaluateOptions& options);

@@ -34,18 +34,33 @@ inline constexpr int kLatent = 128;       // width of the latent after the sourc
 inline constexpr int kPoolLevels = 3;     // encoder blocks (each halves rows and cols, rounding up)
 inline constexpr std::array<int, 3> kPaperChannels{64, 128, 256};  // conv widths, blocks 1-3
 inline constexpr std::array<int, 3> kFastChannels{16, 32, 64};     // conv widths of the fast preset
+inline constexpr double kContactKpa = 0.5;  // a cell above this is in contact (the paper's binary R^2)
 inline constexpr const char* kModelFormat = "ptnet-model";
 inline constexpr int kModelVersion = 1;
 
 // faithful: the paper's network (decoder unpools with the encoder's max-pool
 // indices). skip: the same plus U-Net skip connections (each decoder block
-// also sees the encoder block's feature map at its resolution).
-enum class Arch { faithful, skip };
-Arch parse_arch(const std::string& text);  // "faithful" | "skip"; throws Error
+// also sees the encoder block's feature map at its resolution). residual:
+// skip, and the network predicts a correction added to its input window
+// (output = ReLU(input + decoder)): an untrained residual model is the copy
+// baseline, training learns what changes from the source body to the target.
+enum class Arch { faithful, skip, residual };
+inline bool has_skips(Arch arch) { return arch != Arch::faithful; }
+
+// What the network sees of the source window. none: the recorded maps (the
+// paper). zoom: the maps aligned to the target body first, zoomed by the
+// height ratio about the mat centre and scaled by the weight ratio over the
+// area ratio (zoom_about_centre in pressure.hpp), so that the network learns
+// only what the body-scale geometry does not explain.
+enum class Align { none, zoom };
+Align parse_align(const std::string& text);  // "none" | "zoom"; throws Error
+const char* align_name(Align align);
+Arch parse_arch(const std::string& text);  // "faithful" | "skip" | "residual"; throws Error
 const char* arch_name(Arch arch);
 
 struct ModelConfig {
   Arch arch = Arch::faithful;
+  Align align = Align::none;
   int window = kWindow;                    // frames per window = input/output channels
   int rows = 80;                           // mat rows (H)
   int cols = 28;                           // mat cols (W)
@@ -74,6 +89,10 @@ struct Normalisation {
   double pressure_scale_kpa = 1;  // network pressure = kPa / scale
   double height_mean_cm = 170, height_std_cm = 10;
   double weight_mean_kg = 70, weight_std_kg = 10;
+  // Output cells below this are set to 0 (kPa; 0 = off): the transferred map's
+  // activation threshold, fitted after training on the validation windows so
+  // that the predicted contact area matches the truth's (docs/model.md).
+  double contact_threshold_kpa = 0;
   // {sex (0 female, 1 male), z-scored height, z-scored weight}
   std::array<float, 3> attributes(const BodySpec& body) const;
 };

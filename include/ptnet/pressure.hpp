@@ -42,4 +42,20 @@ struct PressureSequence {
   float at(int t, int r, int c) const { return frame(t)[r * mat.cols + c]; }
 };
 
+// Body-scale alignment of pressure maps from one body to another, for
+// retargeted motion: the same motion on a body `scale` times as tall lands
+// `scale` times as far from the centre of the mat (the sequence is centred on
+// the mat) with feet `scale` times as long, so each frame is zoomed by `scale`
+// about the mat centre (bilinear; cells sampled from outside the mat are 0)
+// and multiplied by `gain` (body_gain: the weight ratio over the area ratio,
+// so that total force scales with weight).
+// in, out: [frames, rows, cols] kPa; in and out must not overlap.
+void zoom_frames(const float* in, float* out, int frames, int rows, int cols, double scale, double gain);
+PressureSequence zoom_about_centre(const PressureSequence& in, double scale, double gain);
+inline double body_scale(double source_height, double target_height) { return target_height / source_height; }
+inline double body_gain(double source_height, double source_weight, double target_height, double target_weight) {
+  const double s = body_scale(source_height, target_height);
+  return target_weight / source_weight / (s * s);
+}
+
 }  // namespace ptnet

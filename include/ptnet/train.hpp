@@ -170,6 +170,9 @@ struct TrainOptions {
   ModelConfig model;                // window, rows and cols are taken from the data
   int epochs = 500;                 // maximum epochs
   int batch = 1028;                 // windows per optimiser step
+  int micro_batch = 64;             // windows per forward/backward pass; gradients of a batch's
+                                    // micro-batches are accumulated (bounds memory; BatchNorm
+                                    // statistics are per micro-batch)
   double lr = 0.01;                 // Adam initial learning rate
   int lr_halve_every = 20;          // epochs between halvings of the learning rate
   int patience = 50;                // early stop after this many epochs without val improvement
@@ -182,6 +185,7 @@ struct TrainOptions {
   Loss loss = Loss::mse;
   double force_weight = 0.1;        // weight of the total-force term (Loss::mse_force)
   double cache_mb = 1024;           // whole-sequence cache budget
+  bool fit_contact_threshold = true;  // after training, fit the output activation threshold
   bool resume = false;              // continue from OUT/checkpoint.pt
   std::string init;                 // start from this model folder's weights
   bool identity_pairs = false;      // WindowOptions::identity_pairs (fine-tuning on recordings)

@@ -8,7 +8,8 @@
 //
 // A sequence of T >= window frames is cut into windows every `stride` frames
 // (plus one ending at the last frame), each window is transferred, and every
-// output frame is the average of the windows covering it.
+// output frame is the average of the windows covering it; cells below the
+// model's fitted contact threshold (config.json, docs/model.md) are then 0.
 #pragma once
 
 #include <memory>
@@ -25,6 +26,7 @@ struct TransferOptions {
   int batch = 64;            // windows per forward pass
   int threads = 0;           // torch::set_num_threads; 0 leaves the default
   std::string device = "cpu";
+  bool raw = false;          // true: skip the model's fitted contact threshold
 };
 
 class Transfer {

@@ -46,7 +46,7 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
                     "no test pairs: evaluation needs the same motion on at least two bodies "
                     "with role 'original'");
   std::vector<EvalRow> rows;
-  rows.reserve(pairs.size() * 3);
+  rows.reserve(pairs.size() * 4);
   int done = 0;
   for (const auto& pair : pairs) {
     const PairData data = load_pair(dataset, pair);
@@ -59,7 +59,8 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
     const std::pair<std::string, PressureSequence> predictions[] = {
         {"model", model(source, src_body, dst_body)},
         {"copy", copy_baseline(source)},
-        {"weight_ratio", weight_ratio_baseline(source, src_body.weight_kg, dst_body.weight_kg)}};
+        {"weight_ratio", weight_ratio_baseline(source, src_body.weight_kg, dst_body.weight_kg)},
+        {"body_scale", body_scale_baseline(source, src_body, dst_body)}};
     for (const auto& [method, predicted] : predictions) {
       EvalRow r;
       r.method = method;

@@ -108,4 +108,11 @@ PressureSequence weight_ratio_baseline(const PressureSequence& source, double so
   return out;
 }
 
+PressureSequence body_scale_baseline(const PressureSequence& source, const BodySpec& source_body,
+                                     const BodySpec& target_body) {
+  return zoom_about_centre(source, body_scale(source_body.height_cm, target_body.height_cm),
+                           body_gain(source_body.height_cm, source_body.weight_kg, target_body.height_cm,
+                                     target_body.weight_kg));
+}
+
 }  // namespace ptnet

@@ -20,7 +20,7 @@ nn::Conv2dOptions conv_options(int in, int out) { return nn::Conv2dOptions(in, o
 nn::ConvTranspose2dOptions deconv_options(int in, int out) {
   return nn::ConvTranspose2dOptions(in, out, 3).padding(1);
 }
-int skip_factor(const ModelConfig& c) { return c.arch == Arch::skip ? 2 : 1; }
+int skip_factor(const ModelConfig& c) { return has_skips(c.arch) ? 2 : 1; }
 // (MaxUnpool2d of LibTorch 1.13 rejects a 2-element output_size, hence the
 // functional torch::max_unpool2d in forward().)
 std::int64_t flat_size(const ModelConfig& c) {
@@ -99,14 +99,16 @@ torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const
   auto d = torch::relu(fc_decode(torch::cat({z, target}, 1)));
   d = d.view({n, c.channels[2], s3[0], s3[1]});
   d = torch::max_unpool2d(d, i3, {s2[0], s2[1]});            // [N,C3,H2,W2]
-  if (c.arch == Arch::skip) d = torch::cat({d, e3}, 1);
+  if (has_skips(c.arch)) d = torch::cat({d, e3}, 1);
   d = torch::relu(dbn3(deconv3(d)));                                 // [N,C2,H2,W2]
   d = torch::max_unpool2d(d, i2, {s1[0], s1[1]});            // [N,C2,H1,W1]
-  if (c.arch == Arch::skip) d = torch::cat({d, e2}, 1);
+  if (has_skips(c.arch)) d = torch::cat({d, e2}, 1);
   d = torch::relu(dbn2(deconv2(d)));                                 // [N,C1,H1,W1]
   d = torch::max_unpool2d(d, i1, {s0[0], s0[1]});            // [N,C1,H,W]
-  if (c.arch == Arch::skip) d = torch::cat({d, e1}, 1);
-  return deconv1(d);                                                 // [N,T,H,W] pre-activation
+  if (has_skips(c.arch)) d = torch::cat({d, e1}, 1);
+  auto out = deconv1(d);                                             // [N,T,H,W] pre-activation
+  if (c.arch == Arch::residual) out = out + x;                       // a correction to the source
+  return out;
 }
 
 std::int64_t parameter_count(const torch::nn::Module& module) {

@@ -15,10 +15,25 @@ using nlohmann::json;
 Arch parse_arch(const std::string& text) {
   if (text == "faithful") return Arch::faithful;
   if (text == "skip") return Arch::skip;
-  throw Error("--arch: expected faithful or skip, found \"" + text + "\"");
+  if (text == "residual") return Arch::residual;
+  throw Error("--arch: expected faithful, skip or residual, found \"" + text + "\"");
 }
 
-const char* arch_name(Arch arch) { return arch == Arch::skip ? "skip" : "faithful"; }
+Align parse_align(const std::string& text) {
+  if (text == "none") return Align::none;
+  if (text == "zoom") return Align::zoom;
+  throw Error("--align: expected none or zoom, found \"" + text + "\"");
+}
+
+const char* align_name(Align align) { return align == Align::zoom ? "zoom" : "none"; }
+
+const char* arch_name(Arch arch) {
+  switch (arch) {
+    case Arch::skip: return "skip";
+    case Arch::residual: return "residual";
+    default: return "faithful";
+  }
+}
 
 void validate(const ModelConfig& c) {
   auto positive = [](const char* what, int v, int max) {
@@ -43,7 +58,7 @@ std::array<int, 2> pooled_size(const ModelConfig& c, int level) {
 std::int64_t parameter_count(const ModelConfig& c) {
   using I = std::int64_t;
   const I t = c.window, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
-  const I k = 9, skip = c.arch == Arch::skip ? 2 : 1, a = kAttributes;
+  const I k = 9, skip = has_skips(c.arch) ? 2 : 1, a = kAttributes;
   auto s3 = pooled_size(c, 3);
   const I flat = c3 * s3[0] * s3[1];
   I n = 0;
@@ -61,7 +76,7 @@ std::int64_t parameter_count(const ModelConfig& c) {
 
 double forward_flops(const ModelConfig& c) {
   const double t = c.window, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
-  const double k = 9, skip = c.arch == Arch::skip ? 2 : 1, a = kAttributes;
+  const double k = 9, skip = has_skips(c.arch) ? 2 : 1, a = kAttributes;
   auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2), s3 = pooled_size(c, 3);
   const double p0 = double(s0[0]) * s0[1], p1 = double(s1[0]) * s1[1], p2 = double(s2[0]) * s2[1];
   const double flat = c3 * s3[0] * s3[1];
@@ -78,7 +93,7 @@ std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
 }
 
 json to_json(const ModelConfig& c) {
-  return json{{"arch", arch_name(c.arch)}, {"window", c.window}, {"rows", c.rows},
+  return json{{"arch", arch_name(c.arch)}, {"align", align_name(c.align)}, {"window", c.window}, {"rows", c.rows},
               {"cols", c.cols}, {"channels", c.channels}, {"hidden", c.hidden},
               {"latent", c.latent}, {"attributes", kAttributes},
               {"output", "relu"}, {"pooling", "max 2x2 ceil, indices shared with the decoder"},
@@ -110,7 +125,13 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   c.arch = Arch::faithful;
   const std::string arch = get<std::string>(j, "arch", where);
   if (arch == "skip") c.arch = Arch::skip;
+  else if (arch == "residual") c.arch = Arch::residual;
   else if (arch != "faithful") throw Error::in(where, "unknown architecture \"" + arch + "\"");
+  if (j.contains("align")) {
+    const std::string align = get<std::string>(j, "align", where);
+    if (align == "zoom") c.align = Align::zoom;
+    else if (align != "none") throw Error::in(where, "unknown input alignment \"" + align + "\"");
+  }
   c.window = get<int>(j, "window", where);
   c.rows = get<int>(j, "rows", where);
   c.cols = get<int>(j, "cols", where);
@@ -138,6 +159,7 @@ json to_json(const ModelDir& d) {
                 {"height_std_cm", d.norm.height_std_cm},
                 {"weight_mean_kg", d.norm.weight_mean_kg},
                 {"weight_std_kg", d.norm.weight_std_kg},
+                {"contact_threshold_kpa", d.norm.contact_threshold_kpa},
                 {"sex", "female 0, male 1"}}},
               {"data", d.data.is_null() ? json::object() : d.data},
               {"options", d.options.is_null() ? json::object() : d.options},
@@ -180,6 +202,9 @@ ModelDir read_model_dir(const std::string& dir) {
   d.norm.height_std_cm = get<double>(n, "height_std_cm", path);
   d.norm.weight_mean_kg = get<double>(n, "weight_mean_kg", path);
   d.norm.weight_std_kg = get<double>(n, "weight_std_kg", path);
+  if (n.contains("contact_threshold_kpa")) d.norm.contact_threshold_kpa = get<double>(n, "contact_threshold_kpa", path);
+  if (!(d.norm.contact_threshold_kpa >= 0) || !std::isfinite(d.norm.contact_threshold_kpa))
+    throw Error::in(path, "normalisation.contact_threshold_kpa must be >= 0");
   for (double v : {d.norm.pressure_scale_kpa, d.norm.height_std_cm, d.norm.weight_std_kg})
     if (!(v > 0) || !std::isfinite(v)) throw Error::in(path, "normalisation scales must be > 0");
   if (j.contains("data")) d.data = j["data"];

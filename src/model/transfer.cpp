@@ -60,7 +60,14 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
 
   const float inv_scale = float(1.0 / d.norm.pressure_scale_kpa);
   auto sa = d.norm.attributes(source), ta = d.norm.attributes(target);
-  torch::Tensor input = torch::from_blob(const_cast<float*>(src.kpa.data()), {t, h, w}, torch::kFloat32)
+  // The network's input: the sequence itself, or aligned to the target body.
+  const PressureSequence aligned =
+      d.model.align == Align::zoom
+          ? zoom_about_centre(src, body_scale(source.height_cm, target.height_cm),
+                              body_gain(source.height_cm, source.weight_kg, target.height_cm, target.weight_kg))
+          : PressureSequence{};
+  const PressureSequence& in = d.model.align == Align::zoom ? aligned : src;
+  torch::Tensor input = torch::from_blob(const_cast<float*>(in.kpa.data()), {t, h, w}, torch::kFloat32)
                             .mul(inv_scale);                             // [T, H, W] normalised
   torch::Tensor sum = torch::zeros({t, h, w}, torch::kFloat32);          // [T, H, W]
   torch::Tensor cover = torch::zeros({t}, torch::kFloat32);              // windows per frame
@@ -80,6 +87,8 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
     }
   }
   auto out_t = (sum / cover.view({t, 1, 1}) * float(d.norm.pressure_scale_kpa)).contiguous();
+  if (!impl_->options.raw && d.norm.contact_threshold_kpa > 0)
+    out_t.masked_fill_(out_t < float(d.norm.contact_threshold_kpa), 0.0f);  // the fitted activation threshold
   PressureSequence out(src.mat, t, src.fps);
   std::copy(out_t.data_ptr<float>(), out_t.data_ptr<float>() + out.kpa.size(), out.kpa.begin());
   return out;

@@ -4,7 +4,9 @@
 //
 // Dimension legend: N windows in a batch, T window frames, H x W mat cells,
 // A = 3 attributes.
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -50,13 +52,15 @@ const char* loss_name(Loss l) { return l == Loss::mse_force ? "mse+force" : "mse
 
 json options_json(const TrainOptions& o) {
   return json{{"preset", o.preset},        {"epochs", o.epochs},
-              {"batch", o.batch},          {"lr", o.lr},
+              {"batch", o.batch},          {"micro_batch", o.micro_batch},
+              {"lr", o.lr},
               {"lr_halve_every", o.lr_halve_every}, {"patience", o.patience},
               {"seed", o.seed},            {"threads", o.threads},
               {"device", o.device},        {"stride", o.stride},
               {"samples_per_epoch", o.samples_per_epoch}, {"val_samples", o.val_samples},
               {"loss", loss_name(o.loss)}, {"force_weight", o.force_weight},
               {"init", o.init},            {"val_fraction", 0.1},
+              {"fit_contact_threshold", o.fit_contact_threshold},
               {"identity_pairs", o.identity_pairs}};
 }
 
@@ -70,6 +74,7 @@ void check_options(const TrainOptions& o) {
   };
   at_least("epochs", o.epochs, 1);
   at_least("batch", o.batch, 1);
+  at_least("micro-batch", o.micro_batch, 1);
   at_least("patience", o.patience, 1);
   at_least("stride", o.stride, 1);
   at_least("threads", o.threads, 0);
@@ -90,19 +95,21 @@ std::string fmt(const char* f, double v) {
 }
 
 struct Batch {
-  torch::Tensor x, y, sa, ta;  // [N,T,H,W], [N,T,H,W], [N,A], [N,A]
+  torch::Tensor x, y, sa, ta;  // network input, truth [N,T,H,W]; attributes [N,A], [N,A]
+  torch::Tensor src;           // the source windows as recorded [N,T,H,W] (= x unless aligned)
 };
 
 class Batcher {
  public:
   Batcher(const PressureSource& src, const WindowIndex& index, const Normalisation& norm,
-          double cache_mb, torch::Device device)
+          double cache_mb, torch::Device device, Align align)
       : source_(src), index_(index), cache_(src, cache_mb), device_(device),
-        inv_scale_(float(1.0 / norm.pressure_scale_kpa)) {
+        inv_scale_(float(1.0 / norm.pressure_scale_kpa)), align_(align) {
     for (const auto& s : src.sequences()) attrs_.push_back(norm.attributes(src.body(s.body_id)));
   }
 
-  Batch load(const std::vector<WindowRef>& refs) {
+  // with_source: also keep the unaligned source windows (for the baselines).
+  Batch load(const std::vector<WindowRef>& refs, bool with_source = false) {
     const int n = int(refs.size()), t = index_.options().window;
     const MatSpec m = source_.mat();
     const std::int64_t per = std::int64_t(t) * m.cells();
@@ -113,17 +120,37 @@ class Batcher {
     b.ta = torch::empty({n, kAttributes}, torch::kFloat32);
     float *x = b.x.data_ptr<float>(), *y = b.y.data_ptr<float>();
     float *sa = b.sa.data_ptr<float>(), *ta = b.ta.data_ptr<float>();
+    std::vector<float> raw(align_ == Align::zoom ? std::size_t(per) : 0);
     for (int i = 0; i < n; ++i) {
       const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
-      cache_.read(p.source, refs[i].start, t, x + i * per);
+      if (align_ == Align::zoom) {
+        // Network input = the source window aligned to the target body.
+        cache_.read(p.source, refs[i].start, t, raw.data());
+        const BodySpec& a = body_of(p.source);
+        const BodySpec& z = body_of(p.target);
+        zoom_frames(raw.data(), x + i * per, t, m.rows, m.cols, body_scale(a.height_cm, z.height_cm),
+                    body_gain(a.height_cm, a.weight_kg, z.height_cm, z.weight_kg));
+      } else {
+        cache_.read(p.source, refs[i].start, t, x + i * per);
+      }
       cache_.read(p.target, refs[i].start, t, y + i * per);
       std::copy_n(attrs_[std::size_t(p.source)].data(), kAttributes, sa + i * kAttributes);
       std::copy_n(attrs_[std::size_t(p.target)].data(), kAttributes, ta + i * kAttributes);
     }
     b.x.mul_(inv_scale_);
     b.y.mul_(inv_scale_);
+    b.src = b.x;
+    if (align_ == Align::zoom && with_source) {
+      b.src = torch::empty_like(b.x);
+      for (int i = 0; i < n; ++i) {
+        const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
+        cache_.read(p.source, refs[i].start, t, b.src.data_ptr<float>() + i * per);
+      }
+      b.src.mul_(inv_scale_);
+    }
     if (device_ != torch::kCPU) {
       b.x = b.x.to(device_), b.y = b.y.to(device_), b.sa = b.sa.to(device_), b.ta = b.ta.to(device_);
+      b.src = b.src.to(device_);
     }
     return b;
   }
@@ -141,7 +168,9 @@ class Batcher {
   SequenceCache cache_;
   torch::Device device_;
   float inv_scale_;
+  Align align_;
   std::vector<std::array<float, 3>> attrs_;
+  const BodySpec& body_of(int seq) const { return source_.body(source_.sequences()[std::size_t(seq)].body_id); }
 };
 
 // Content loss (MSE) on the output ReLU(raw), except that cells whose truth
@@ -158,10 +187,26 @@ torch::Tensor loss_fn(const TrainOptions& o, const torch::Tensor& raw, const tor
   return loss;
 }
 
+// Candidate output activation thresholds (kPa) for the contact fit.
+constexpr double kThresholdCandidatesKpa[] = {0.5, 1, 1.5, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 25, 30, 40};
+constexpr int kCandidates = int(std::size(kThresholdCandidatesKpa));
+
 struct ValResult {
   double mse = 0;                       // normalised
   double rmse_kpa = 0, copy_rmse_kpa = 0, scale_rmse_kpa = 0, zero_rmse_kpa = 0;
+  double zoom_rmse_kpa = NAN;           // the aligned (zoomed) source, when the model aligns
+  // With baselines: binary R^2 (cells > kContactKpa) of the output zeroed
+  // below each candidate threshold, and of the copy baseline.
+  std::vector<double> binary_r2;        // [kCandidates]
+  double copy_binary_r2 = 0;
 };
+
+// 1 - mismatches / (n q (1 - q)), q the truth's contact fraction (eval.hpp).
+double binary_r2_from_counts(double mismatches, double ones, double n) {
+  const double q = ones / n, ss_tot = n * q * (1 - q);
+  if (ss_tot <= 0) return mismatches == 0 ? 1.0 : 0.0;
+  return 1 - mismatches / ss_tot;
+}
 
 ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const WindowIndex& index,
                          const TrainOptions& o, double scale_kpa, bool baselines) {
@@ -169,28 +214,40 @@ ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const Windo
   const std::int64_t n = o.val_samples > 0 ? std::min(o.val_samples, total) : total;
   net->eval();
   torch::NoGradGuard no_grad;
-  double sum = 0, copy_sum = 0, scale_sum = 0, zero_sum = 0;
+  double sum = 0, copy_sum = 0, scale_sum = 0, zero_sum = 0, zoom_sum = 0;
+  const bool aligned = net->config().align == Align::zoom;
+  double ones = 0, copy_mismatches = 0;
+  std::vector<double> mismatches(kCandidates, 0.0);
   std::int64_t count = 0;
   std::vector<WindowRef> refs;
   auto flush = [&]() {
     if (refs.empty()) return;
-    Batch b = batcher.load(refs);
+    Batch b = batcher.load(refs, baselines);
     auto out = net->forward(b.x, b.sa, b.ta);
     sum += torch::mse_loss(out, b.y, torch::Reduction::Sum).item<double>();
     if (baselines) {
-      copy_sum += torch::mse_loss(b.x, b.y, torch::Reduction::Sum).item<double>();
+      copy_sum += torch::mse_loss(b.src, b.y, torch::Reduction::Sum).item<double>();
       zero_sum += b.y.pow(2).sum().item<double>();
+      if (aligned) zoom_sum += torch::mse_loss(b.x, b.y, torch::Reduction::Sum).item<double>();
       std::vector<float> ratio;
       for (const auto& r : refs) ratio.push_back(float(batcher.weight_ratio(r)));
       auto k = torch::tensor(ratio).view({-1, 1, 1, 1}).to(b.x.device());
-      scale_sum += torch::mse_loss(b.x * k, b.y, torch::Reduction::Sum).item<double>();
+      scale_sum += torch::mse_loss(b.src * k, b.y, torch::Reduction::Sum).item<double>();
+      const auto contact = b.y * float(scale_kpa) > kContactKpa;     // [N,T,H,W] bool
+      const auto out_kpa = out * float(scale_kpa);
+      ones += contact.sum().item<double>();
+      copy_mismatches += ((b.src * float(scale_kpa) > kContactKpa) != contact).sum().item<double>();
+      for (int c = 0; c < kCandidates; ++c) {
+        const double t = std::max(kThresholdCandidatesKpa[c], kContactKpa);
+        mismatches[std::size_t(c)] += ((out_kpa >= t) != contact).sum().item<double>();
+      }
     }
     count += out.numel();
     refs.clear();
   };
   for (std::int64_t i = 0; i < n; ++i) {
     refs.push_back(index.val(n == total ? i : i * total / n));
-    if (int(refs.size()) == o.batch) flush();
+    if (int(refs.size()) == std::min(o.batch, o.micro_batch)) flush();
   }
   flush();
   ValResult r;
@@ -199,6 +256,11 @@ ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const Windo
   r.copy_rmse_kpa = std::sqrt(copy_sum / double(count)) * scale_kpa;
   r.scale_rmse_kpa = std::sqrt(scale_sum / double(count)) * scale_kpa;
   r.zero_rmse_kpa = std::sqrt(zero_sum / double(count)) * scale_kpa;
+  r.zoom_rmse_kpa = aligned ? std::sqrt(zoom_sum / double(count)) * scale_kpa : NAN;
+  if (baselines) {
+    for (double m : mismatches) r.binary_r2.push_back(binary_r2_from_counts(m, ones, double(count)));
+    r.copy_binary_r2 = binary_r2_from_counts(copy_mismatches, ones, double(count));
+  }
   return r;
 }
 
@@ -379,7 +441,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
       (o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
 
-  Batcher batcher(source, index, md.norm, o.cache_mb, device);
+  Batcher batcher(source, index, md.norm, o.cache_mb, device, md.model.align);
   TrainResult result;
   const bool finished_before = s.epoch >= o.epochs || s.bad_epochs >= o.patience;
   for (int e = s.epoch; e < o.epochs && s.bad_epochs < o.patience && !finished_before; ++e) {
@@ -396,16 +458,26 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       refs.clear();
       for (std::size_t j = i; j < std::min(order.size(), i + std::size_t(o.batch)); ++j)
         refs.push_back(index.train(order[j]));
-      Batch b = batcher.load(refs);
+      // One optimiser step per batch; gradients accumulate over micro-batches,
+      // each loss weighted by its share of the batch (= the batch mean).
       optimizer.zero_grad();
-      auto loss = loss_fn(o, net->forward_raw(b.x, b.sa, b.ta), b.y);
-      const double l = loss.item<double>();
-      if (!std::isfinite(l))
-        throw Error("training diverged: loss is " + std::string(std::isnan(l) ? "NaN" : "infinite") +
-                    " at epoch " + std::to_string(e + 1) + ", batch " + std::to_string(i / o.batch + 1) +
-                    " (try a lower --lr); the last good checkpoint (epoch " + std::to_string(s.epoch) +
-                    ") is kept in " + ckpt_path);
-      loss.backward();
+      double l = 0;
+      const std::size_t micro = std::size_t(std::max(1, o.micro_batch));
+      for (std::size_t m = 0; m < refs.size(); m += micro) {
+        const std::vector<WindowRef> part(refs.begin() + std::ptrdiff_t(m),
+                                          refs.begin() + std::ptrdiff_t(std::min(refs.size(), m + micro)));
+        Batch b = batcher.load(part);
+        auto loss = loss_fn(o, net->forward_raw(b.x, b.sa, b.ta), b.y) *
+                    (double(part.size()) / double(refs.size()));
+        const double part_loss = loss.item<double>();
+        if (!std::isfinite(part_loss))
+          throw Error("training diverged: loss is " + std::string(std::isnan(part_loss) ? "NaN" : "infinite") +
+                      " at epoch " + std::to_string(e + 1) + ", batch " + std::to_string(i / o.batch + 1) +
+                      " (try a lower --lr); the last good checkpoint (epoch " + std::to_string(s.epoch) +
+                      ") is kept in " + ckpt_path);
+        loss.backward();
+        l += part_loss;
+      }
       optimizer.step();
       loss_sum += l * double(refs.size());
       seen += std::int64_t(refs.size());
@@ -440,6 +512,11 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
   load_weights(net, best_path);
   net->to(device);
   const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true);
+  // The output activation threshold that best matches the truth's contact
+  // area on the validation windows (the first candidate, 0.5 kPa, is the
+  // binarisation threshold itself: no change to the binary maps).
+  const int best_c = int(std::max_element(v.binary_r2.begin(), v.binary_r2.end()) - v.binary_r2.begin());
+  md.norm.contact_threshold_kpa = o.fit_contact_threshold ? kThresholdCandidatesKpa[best_c] : 0.0;
   result.epochs_run = s.epoch;
   result.best_epoch = s.best_epoch;
   result.best_val_loss = s.best_val;
@@ -456,14 +533,20 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
                     {"val_rmse_copy_kpa", v.copy_rmse_kpa},
                     {"val_rmse_weight_scale_kpa", v.scale_rmse_kpa},
                     {"val_rmse_zero_kpa", v.zero_rmse_kpa},
+                    {"val_rmse_zoom_kpa", std::isfinite(v.zoom_rmse_kpa) ? json(v.zoom_rmse_kpa) : json()},
+                    {"val_binary_r2_raw", v.binary_r2.front()},
+                    {"val_binary_r2", v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)]},
+                    {"val_binary_r2_copy", v.copy_binary_r2},
+                    {"contact_threshold_kpa", md.norm.contact_threshold_kpa},
                     {"parameters", parameter_count(*net)}};
   write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
-  char line[240];
+  char line[320];
   std::snprintf(line, sizeof line,
                 "train: best epoch %d, val %.6f, val RMSE %.3f kPa (copy %.3f, weight-scale %.3f, "
-                "all-zero %.3f), %.1f s",
+                "all-zero %.3f, zoom %.3f); binary R^2 %.3f (raw %.3f, copy %.3f) at contact threshold %.1f kPa; %.1f s",
                 s.best_epoch, s.best_val, v.rmse_kpa, v.copy_rmse_kpa, v.scale_rmse_kpa, v.zero_rmse_kpa,
-                result.seconds);
+                v.zoom_rmse_kpa, v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)], v.binary_r2.front(),
+                v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
   log(line);
   return result;
 }
