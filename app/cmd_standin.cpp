@@ -1,5 +1,6 @@
 // ptnet standin: writes the stand-in for real pressure-mat recordings (five
-// subjects on their own bodies, a degraded sensor; docs/har.md). Thin glue
+// procedural subjects, or one per CMU subject of a mocap folder, on their own
+// bodies, a degraded sensor; docs/har.md). Thin glue
 // over ptnet::har::write_standin.
 #if defined(PTNET_HAR_STANDIN)
 #include <iostream>
@@ -20,15 +21,30 @@ void setup(CLI::App& app) {
   CLI::App* s = app.add_subcommand(
       "standin",
       "Write the STAND-IN for real recordings (simulated, not real data): N subjects, each its "
-      "own body and procedural performer, every category, a noisier sensor with crosstalk, "
-      "per-cell gain spread and dead cells (input for validate-har)");
+      "own body and procedural performer, every category (or, with --mocap, one subject per CMU "
+      "subject of a mocap folder), a noisier sensor with crosstalk, per-cell gain spread and dead "
+      "cells (input for validate-har)");
   s->add_option("--out", c->out, "Dataset file to write (.h5)")->required();
-  s->add_option("--subjects", c->o.subjects, "Subjects s1..sN")->capture_default_str()->check(CLI::Range(2, 50));
-  s->add_option("--seconds", c->o.seconds, "Seconds per category clip")
+  auto* mocap = s->add_option("--mocap", c->o.mocap,
+                              "Mocap folder (clips.csv + BVH): one subject s<N> per CMU subject N, "
+                              "its clips retargeted onto its own sampled body, instead of the "
+                              "procedural performers")
+                    ->check(CLI::ExistingDirectory);
+  s->add_option("--subjects", c->o.subjects, "Subjects s1..sN (procedural)")
       ->capture_default_str()
-      ->check(CLI::Range(2.0, 600.0));
-  s->add_option("--takes", c->o.takes, "Clips per category and subject")->capture_default_str()->check(CLI::Range(1, 10));
-  s->add_option("--first-performer", c->o.first_performer, "Procedural performer of s1")->capture_default_str();
+      ->check(CLI::Range(2, 50))
+      ->excludes(mocap);
+  s->add_option("--seconds", c->o.seconds, "Seconds per category clip (procedural)")
+      ->capture_default_str()
+      ->check(CLI::Range(2.0, 600.0))
+      ->excludes(mocap);
+  s->add_option("--takes", c->o.takes, "Clips per category and subject (procedural)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10))
+      ->excludes(mocap);
+  s->add_option("--first-performer", c->o.first_performer, "Procedural performer of s1")
+      ->capture_default_str()
+      ->excludes(mocap);
   s->add_option("--crosstalk", c->o.crosstalk, "Crosstalk per neighbour")->capture_default_str()->check(CLI::Range(0.0, 0.2));
   s->add_option("--noise", c->o.noise_sd_kpa, "Read noise sd (kPa)")->capture_default_str()->check(CLI::Range(0.0, 50.0));
   s->add_option("--gain-sd", c->o.gain_sd, "Sigma of the per-cell log-normal gain")->capture_default_str()->check(CLI::Range(0.0, 1.0));

@@ -2,7 +2,7 @@
 //
 //   ptnet train --data data.h5 --out model/ --preset fast
 //   ptnet train --data data.h5 --out model/ --resume            # continue
-//   ptnet train --data real.h5 --out tuned/ --init model/ --epochs 20   # fine-tune
+//   ptnet train --data finetune.h5 --out tuned/ --init model/ --identity-pairs   # fine-tune
 #include <sstream>
 
 #include "command.hpp"
@@ -19,7 +19,7 @@ struct TrainCli {
   long long samples_per_epoch = -1, val_samples = -1;
   double lr = 0, cache_mb = 0;
   long long seed = -1;
-  bool resume = false, force = false, no_contact_threshold = false;
+  bool resume = false, force = false, no_contact_threshold = false, identity_pairs = false;
 };
 
 std::array<int, 3> parse_channels(const std::string& text) {
@@ -68,6 +68,7 @@ void run(const TrainCli& c) {
   }
   o.device = c.device;
   o.init = c.init;
+  o.identity_pairs = c.identity_pairs;
   o.resume = c.resume;
   o.fit_contact_threshold = !c.no_contact_threshold;
   o.force = c.force;
@@ -118,6 +119,9 @@ void setup(CLI::App& app) {
                 "Do not fit the output activation threshold (raw network output, as in the paper)");
   cmd->add_flag("--resume", opt->resume, "Continue from OUT/checkpoint.pt");
   cmd->add_option("--init", opt->init, "Start from this model folder's weights (fine-tuning)");
+  cmd->add_flag("--identity-pairs", opt->identity_pairs,
+                "A motion recorded on one body only trains as the pair (body -> same body): for "
+                "fine-tuning on real recordings (ptnet import --dataset ... --subjects ...)");
   cmd->add_flag("--force", opt->force, "Overwrite an existing model folder");
   cmd->callback([opt]() { run(*opt); });
 }

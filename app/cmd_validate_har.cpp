@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model_config.hpp"
@@ -17,12 +18,13 @@
 namespace {
 
 struct ValidateHarOptions {
-  std::string real, model, bodies, out = "har";
+  std::string real, model, baseline, bodies, out = "har";
   std::string train_subjects = "1,2,3", test_subjects = "4,5";
   int runs = 10;
   int stride = 5;
   int synthetic_bodies = ptnet::har::HarOptions{}.synthetic_bodies;
   int transfer_stride = 15;
+  int threads = 1;
   int pca = 4;
   int epochs = ptnet::har::ClassifierOptions{}.epochs;
   double bandwidth = 0;
@@ -43,6 +45,18 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
   }
   if (out.empty()) throw ptnet::Error(option + ": no subjects given");
   return out;
+}
+
+void write_outputs(const ValidateHarOptions& o, const ptnet::har::HarResult& r,
+                   const std::string& json_path, const std::string& png_path) {
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (ec) throw ptnet::Error::in(o.out, "cannot create folder: " + ec.message());
+  ptnet::write_text_file(json_path, ptnet::har::to_json(r), o.force);
+  ptnet::har::write_confusion_png(png_path, r, o.force);
+  std::cout << ptnet::har::format_table(r);
+  if (!ptnet::cli::globals().quiet)
+    std::cerr << "validate-har: wrote " << json_path << " and " << png_path << "\n";
 }
 
 void run(const ValidateHarOptions& o) {
@@ -81,6 +95,26 @@ void run(const ValidateHarOptions& o) {
 
   ptnet::Dataset real = ptnet::Dataset::open(o.real);
   ptnet::har::check_subjects(real, h);  // before loading anything else
+  if (o.model.empty() == o.baseline.empty())
+    throw ptnet::Error("validate-har: give --model (a trained model) or --baseline (copy | weight-ratio)");
+  if (!o.baseline.empty()) {
+    // Reference points without a model: synthetic = the source unchanged
+    // (more of the same data) or scaled by the weight ratio (eval's baselines).
+    if (o.baseline != "copy" && o.baseline != "weight-ratio")
+      throw ptnet::Error("--baseline: expected copy or weight-ratio, found '" + o.baseline + "'");
+    const bool copy = o.baseline == "copy";
+    if (!quiet)
+      std::cerr << "validate-har: real " << o.real << ", baseline " << o.baseline << " instead of a model\n";
+    const ptnet::har::HarResult r = ptnet::har::validate_har(
+        real,
+        [copy](const ptnet::PressureSequence& s, const ptnet::BodySpec& from, const ptnet::BodySpec& to_body) {
+          return copy ? ptnet::copy_baseline(s)
+                      : ptnet::weight_ratio_baseline(s, from.weight_kg, to_body.weight_kg);
+        },
+        h);
+    write_outputs(o, r, json_path, png_path);
+    return;
+  }
   const ptnet::ModelDir dir = ptnet::read_model_dir(o.model);
   const ptnet::MatSpec& mm = dir.mat;
   const ptnet::MatSpec& dm = real.info().mat;
@@ -93,11 +127,13 @@ void run(const ValidateHarOptions& o) {
   ptnet::TransferOptions to;
   to.stride = o.transfer_stride;
   to.device = o.device;
+  to.threads = o.threads;  // torch::set_num_threads: the classifiers too
   ptnet::Transfer transfer(o.model, to);
   if (!quiet)
     std::cerr << "validate-har: real " << o.real << ", model " << o.model << ", train "
               << o.train_subjects << ", test " << o.test_subjects << ", runs " << o.runs
-              << ", stride " << o.stride << ", transfer stride " << o.transfer_stride << "\n";
+              << ", stride " << o.stride << ", transfer stride " << o.transfer_stride << ", threads "
+              << o.threads << "\n";
 
   const ptnet::har::HarResult r = ptnet::har::validate_har(
       real,
@@ -105,12 +141,7 @@ void run(const ValidateHarOptions& o) {
           const ptnet::BodySpec& to_body) { return transfer.run(s, from, to_body); },
       h);
 
-  fs::create_directories(o.out, ec);
-  if (ec) throw ptnet::Error::in(o.out, "cannot create folder: " + ec.message());
-  ptnet::write_text_file(json_path, ptnet::har::to_json(r), o.force);
-  ptnet::har::write_confusion_png(png_path, r, o.force);
-  std::cout << ptnet::har::format_table(r);
-  if (!quiet) std::cerr << "validate-har: wrote " << json_path << " and " << png_path << "\n";
+  write_outputs(o, r, json_path, png_path);
 }
 
 void setup(CLI::App& app) {
@@ -123,9 +154,12 @@ void setup(CLI::App& app) {
   c->add_option("--real", o->real, "Real recordings (ptnet dataset .h5); subjects = its bodies")
       ->required()
       ->check(CLI::ExistingFile);
-  c->add_option("--model", o->model, "Trained model folder (config.json + model.pt)")
-      ->required()
-      ->check(CLI::ExistingDirectory);
+  auto* model = c->add_option("--model", o->model, "Trained model folder (config.json + model.pt)")
+                    ->check(CLI::ExistingDirectory);
+  c->add_option("--baseline", o->baseline,
+                "Instead of --model: synthetic windows from a naive baseline, copy (the source "
+                "unchanged) or weight-ratio (scaled by target/source weight), as reference points")
+      ->excludes(model);
   c->add_option("--train-subjects", o->train_subjects,
                 "Comma-separated body ids (\"1\" also matches s1 / subject1)")
       ->capture_default_str();
@@ -160,6 +194,11 @@ void setup(CLI::App& app) {
   c->add_option("--seed", o->seed, "Seed of run 1 (run r uses seed + r - 1) and of body sampling")
       ->capture_default_str();
   c->add_option("--device", o->device, "cpu | cuda | cuda:N")->capture_default_str();
+  c->add_option("--threads", o->threads,
+                "CPU threads of the transfer model and the classifiers (1: measured fastest for "
+                "these small networks, docs/results.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
   c->add_flag("--no-categories", o->no_categories,
               "Skip the classifiers trained on the dataset's category labels");
   c->add_option("--out", o->out, "Output folder (results.json, confusion.png)")

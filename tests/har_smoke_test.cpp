@@ -93,6 +93,26 @@ TEST(HarSmoke, UnknownSubjectsAreAnError) {
   EXPECT_EQ(r.err, "ptnet: error: " + f.data + ": no subject '7' (bodies: s1,s2,s3)\n");
 }
 
+TEST(HarSmoke, EmptySubjectListIsAnError) {
+  Fixture f;
+  const Outcome r = run("validate-har --real " + f.data + " --model " + f.model +
+                    " --train-subjects , --test-subjects 3 --out " + (f.dir / "har").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: --train-subjects: no subjects given\n");
+}
+
+TEST(HarSmoke, NeedsAModelOrABaseline) {
+  Fixture f;
+  Outcome r = run("validate-har --real " + f.data + " --train-subjects 1,2 --test-subjects 3 --out " +
+                  (f.dir / "har").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: validate-har: give --model (a trained model) or --baseline (copy | weight-ratio)\n");
+  r = run("validate-har --real " + f.data + " --baseline shuffle --train-subjects 1,2 --test-subjects 3 --out " +
+          (f.dir / "har").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: --baseline: expected copy or weight-ratio, found 'shuffle'\n");
+}
+
 TEST(HarSmoke, ModelOfAnotherMatSizeIsAnError) {
   Fixture f;
   const Outcome r = run("validate-har --real " + f.data + " --model " + f.model +

@@ -1,12 +1,17 @@
 // The stand-in for real recordings: its degraded sensor (gain spread, dead
-// cells) and the dataset it writes.
+// cells), the dataset it writes, and the mocap variant (one subject per CMU
+// subject of ../shared/mocap).
 #include <gtest/gtest.h>
 
 #ifdef PTNET_HAR_STANDIN
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
 
 #include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 
 using namespace ptnet;
@@ -58,6 +63,83 @@ TEST(HarStandin, WritesSubjectsOnTheirOwnBodiesWithDeadCellsSilent) {
   }
   EXPECT_GT(total, 0.0);  // the subjects do press on the mat
   std::filesystem::remove(path);
+}
+TEST(HarStandin, MocapClipsAreGroupedByCmuSubjectOnTheirOwnBodies) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(fs::path(PTNET_SHARED_MOCAP) / "clips.csv")) GTEST_SKIP() << "../shared/mocap not found";
+  const auto clips = read_mocap_clips(PTNET_SHARED_MOCAP);
+  ASSERT_EQ(clips.size(), 11u);
+  std::map<std::string, std::set<std::string>> expected;  // subject -> categories, from clips.csv
+  for (const auto& c : clips) expected["s" + c.subject].insert(c.category);
+
+  const std::string path = (fs::temp_directory_path() / "ptnet_har_standin_mocap_test.h5").string();
+  StandinOptions o;
+  o.mocap = PTNET_SHARED_MOCAP;
+  o.threads = 1;
+  write_standin(path, o, /*force=*/true);
+  const Dataset d = Dataset::open(path);
+  // One subject per CMU subject, numeric order, each its own body.
+  std::vector<std::string> ids;
+  std::set<double> heights;
+  for (const auto& b : d.bodies()) {
+    ids.push_back(b.id);
+    heights.insert(b.height_cm);
+    EXPECT_EQ(b.role, "original");
+    EXPECT_GE(b.height_cm, 150);
+    EXPECT_LE(b.height_cm, 200);
+  }
+  EXPECT_EQ(ids, (std::vector<std::string>{"s2", "s5", "s6", "s14", "s141"}));
+  EXPECT_EQ(heights.size(), 5u);
+  EXPECT_EQ(d.bodies()[0].sex, Sex::female);
+  EXPECT_EQ(d.bodies()[1].sex, Sex::male);
+  EXPECT_NE(d.info().config_json.find("stand-in"), std::string::npos);
+  EXPECT_NE(d.info().config_json.find("mocap"), std::string::npos);
+
+  // Every clip once, on its own subject's body, with its category.
+  ASSERT_EQ(d.sequences().size(), 11u);
+  std::map<std::string, std::set<std::string>> found;
+  const auto gain = standin_gain_map(d.info().mat, o);
+  for (const auto& m : d.sequences()) {
+    EXPECT_EQ(m.body_id, "s" + m.performer.substr(3)) << m.name;  // performer "CMU<n>"
+    found[m.body_id].insert(m.category);
+    const PressureSequence s = d.read(m.name);
+    double total = 0;
+    for (int t = 0; t < s.frames(); ++t)
+      for (int i = 0; i < s.mat.cells(); ++i) {
+        if (gain[i] == 0) ASSERT_EQ(s.frame(t)[i], 0.0f);
+        total += s.frame(t)[i];
+      }
+    EXPECT_GT(total, 0.0) << m.name;  // the subject does press on the mat
+  }
+  EXPECT_EQ(found, expected);
+  // 14_06: 1440 motion frames at 120 Hz after the T-pose = 12 s -> 360 frames at 30 Hz.
+  EXPECT_NEAR(d.sequence("standin_14_06__s14").frames, 360, 1);
+  EXPECT_EQ(d.sequence("standin_14_06__s14").category, "rom");
+  fs::remove(path);
+}
+
+TEST(HarStandin, BadClipsCsvLinesNameFileAndLine) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "ptnet_har_standin_bad_clips";
+  fs::create_directories(dir);
+  const std::string csv = (dir / "clips.csv").string();
+  auto message = [&](const std::string& text) {
+    std::ofstream(csv) << text;
+    try {
+      read_mocap_clips(dir.string());
+    } catch (const ptnet::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("file,subject,category,take\na.bvh,2,dancing,1\n"),
+            csv + ":2: expected category walking, rom, freestyle or acting, found 'dancing'");
+  EXPECT_EQ(message("file,subject,category,take\na.bvh,2,rom\n"), csv + ":2: expected 4 fields, found 3");
+  EXPECT_EQ(message("file,subject,take\na.bvh,2,1\n"),
+            csv + ":1: expected a header with column category, found 'file,subject,take'");
+  EXPECT_EQ(message("file,subject,category,take\na.bvh,2,rom,0\n"),
+            csv + ":2: expected a take number >= 1, found '0'");
+  fs::remove_all(dir);
 }
 #else
 TEST(HarStandin, NeedsTheSimulator) { GTEST_SKIP() << "simulator stage not built yet"; }

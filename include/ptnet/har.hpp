@@ -307,11 +307,17 @@ std::string to_json(const HarResult& result);  // pretty-printed JSON text
 // training data) in every category, simulated with a sensor profile unlike
 // the training data's: twice the crosstalk, three times the noise, a fixed
 // per-cell gain spread (log-normal) and dead cells.
+// With `mocap` set: one subject s<CMU subject> per CMU subject of the
+// folder's clips.csv instead, each on its own sampled body (sex alternating
+// in subject order, stature female 163 +- 6.5 / male 177 +- 7 cm, weight from
+// the BMI), performing that subject's clips retargeted onto it; the same
+// simulation and degraded sensor.
 struct StandinOptions {
-  int subjects = 5;               // s1..sN
+  std::string mocap;              // folder with clips.csv + BVH files; empty: procedural
+  int subjects = 5;               // s1..sN (procedural only)
   int first_performer = 11;       // procedural performer of s1 (s2 = +1, ...)
-  double seconds = 20;            // per category clip
-  int takes = 1;                  // clips per category and subject
+  double seconds = 20;            // per category clip (procedural only)
+  int takes = 1;                  // clips per category and subject (procedural only)
   double crosstalk = 0.08;        // per neighbour (training default 0.04)
   double noise_sd_kpa = 0.6;      // (training default 0.2)
   double gain_sd = 0.15;          // sigma of the per-cell log-normal gain
@@ -329,6 +335,20 @@ void write_standin(const std::string& path, const StandinOptions& options, bool 
 // The per-cell gain map and dead cells of the stand-in sensor: [H, W] gains
 // (0 = dead), deterministic in the seed.
 std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& options);
+
+// One line of a mocap folder's clips.csv (columns file, subject, category,
+// take required; metres_per_unit, up optional; others ignored, as in
+// ../shared/mocap/clips.csv).
+struct MocapClip {
+  std::string file;            // folder / file
+  std::string subject;         // the performer (CMU subject number)
+  std::string category;        // walking | rom | freestyle | acting
+  int take = 1;
+  double metres_per_unit = 0;  // 0: units detected from the rig
+  std::string up = "y";        // y | z
+};
+// Throws Error "FOLDER/clips.csv:LINE: expected X, found Y" for a bad line.
+std::vector<MocapClip> read_mocap_clips(const std::string& folder);
 
 // ---------------------------------------------------------------- import
 
@@ -348,6 +368,17 @@ struct ImportOptions {
 };
 void import_recordings(const std::string& manifest, const std::string& out,
                        const ImportOptions& options, bool force);
+
+// The fine-tuning set for `ptnet train --init model/ --identity-pairs`
+// (paper 4.2: the model is fine-tuned on the training subjects' real
+// recordings): only the named subjects of `real` (tokens resolved like
+// validate-har's, resolve_subject), so no test subject can reach
+// fine-tuning; their bodies get role "retargeted" and every sequence take 1,
+// what the training protocol trains on. Each recording is on one body only,
+// hence --identity-pairs (source = target pairs). Throws Error for an empty
+// or repeated subject list or an unknown subject.
+void write_finetune_set(const std::string& real, const std::vector<std::string>& subjects,
+                        const std::string& out, bool force);
 
 // Confusion matrices side by side, one per training source, rows normalised
 // (white = 0, dark blue = 1), with class indices; written atomically.

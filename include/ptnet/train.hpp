@@ -91,6 +91,8 @@ struct WindowOptions {
   int stride = 1;                 // frames between window starts
   double val_fraction = 0.1;      // share of each motion's window starts held out
   std::uint64_t seed = 1;         // places the validation blocks
+  bool identity_pairs = false;    // a motion on one body only gives the pair (a, a): fine-tuning
+                                  // on real recordings (one subject per recording)
 };
 
 struct Pair {
@@ -186,6 +188,7 @@ struct TrainOptions {
   bool fit_contact_threshold = true;  // after training, fit the output activation threshold
   bool resume = false;              // continue from OUT/checkpoint.pt
   std::string init;                 // start from this model folder's weights
+  bool identity_pairs = false;      // WindowOptions::identity_pairs (fine-tuning on recordings)
   bool force = false;               // overwrite an existing model folder
   bool quiet = false;               // no progress on stderr
 

@@ -1,7 +1,10 @@
 // Real recordings into the dataset format (ptnet/har.hpp, import_recordings).
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "ptnet/data.hpp"
@@ -149,6 +152,46 @@ void import_recordings(const std::string& manifest, const std::string& out,
     m.source = file.string();
     w.add(m, seq);
   }
+  w.commit();
+}
+
+void write_finetune_set(const std::string& real_path, const std::vector<std::string>& subjects,
+                        const std::string& out, bool force) {
+  check_output_path(out, force);
+  const Dataset real = Dataset::open(real_path);
+  if (subjects.empty()) throw Error::in(real_path, "no fine-tuning subjects given");
+  std::vector<std::string> ids;
+  for (const auto& token : subjects) {
+    const std::string id = resolve_subject(real, token);
+    if (std::find(ids.begin(), ids.end(), id) != ids.end())
+      throw Error::in(real_path, "subject " + id + " listed twice");
+    ids.push_back(id);
+  }
+  std::vector<BodySpec> bodies;
+  for (const auto& id : ids) {
+    BodySpec b = real.body(id);
+    b.role = "retargeted";  // what the training protocol trains on
+    bodies.push_back(b);
+  }
+  DatasetInfo info = real.info();
+  info.generator = std::string("ptnet ") + PTNET_VERSION + " import (fine-tuning set)";
+  nlohmann::json cfg = {{"fine_tuning_set_of", real_path}, {"subjects", ids}};
+  try {
+    cfg["source_config"] = nlohmann::json::parse(real.info().config_json);
+  } catch (const std::exception&) {
+    cfg["source_config"] = real.info().config_json;
+  }
+  info.config_json = cfg.dump();
+  DatasetWriter w(out, info, bodies, force);
+  int written = 0;
+  for (const SequenceMeta& meta : real.sequences()) {
+    if (std::find(ids.begin(), ids.end(), meta.body_id) == ids.end()) continue;
+    SequenceMeta m = meta;
+    m.take = 1;
+    w.add(m, real.read(meta.name));
+    ++written;
+  }
+  if (written == 0) throw Error::in(real_path, "the fine-tuning subjects have no sequences");
   w.commit();
 }
 

@@ -1,17 +1,22 @@
 // The stand-in for real pressure-mat recordings (ptnet/har.hpp, docs/har.md).
-// Procedural performers on their own bodies, simulated with a degraded
-// sensor profile. Clearly a stand-in: every file it writes says so.
+// Subjects on their own bodies (procedural performers, or the real clips of
+// a mocap folder grouped by CMU subject), simulated with a degraded sensor
+// profile. Clearly a stand-in: every file it writes says so.
 //
 // Dimension legend: T frames, H x W mat cells.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 
 #include "ptnet/body.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
+#include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
 
@@ -21,6 +26,209 @@ namespace {
 // Body-mass index of the stand-in subjects: Gaussian 23.5 +- 2.5 kg/m^2,
 // clamped to 19-30 (a typical adult range).
 constexpr double kBmiMean = 23.5, kBmiSd = 2.5, kBmiMin = 19, kBmiMax = 30;
+// Stature of the mocap subjects (their rigs do not carry it: the CC clips
+// share one 1.8 m dummy): the procedural performers' adult statures
+// (src/motion/category.cpp), male 177 +- 7 cm, female 163 +- 6.5 cm.
+constexpr double kMaleStatureCm = 177, kMaleStatureSdCm = 7;
+constexpr double kFemaleStatureCm = 163, kFemaleStatureSdCm = 6.5;
+
+// A subject's body: the given sex and height, weight from a seeded BMI
+// (one distribution object per stand-in: it caches its second draw).
+BodySpec subject_body(const std::string& id, Sex sex, double height_cm, std::mt19937_64& rng,
+                      std::normal_distribution<double>& bmi) {
+  BodySpec b;
+  b.id = id;
+  b.sex = sex;
+  b.height_cm = std::round(std::clamp(height_cm, kMinHeightCm, kMaxHeightCm) * 10) / 10;
+  const double h_m = b.height_cm / 100;
+  b.weight_kg = std::round(std::clamp(bmi(rng), kBmiMin, kBmiMax) * h_m * h_m * 10) / 10;
+  b.weight_kg = std::clamp(b.weight_kg, kMinWeightKg, kMaxWeightKg);
+  b.role = "original";
+  validate(b);
+  return b;
+}
+
+// What the stand-in simulates: the subjects' bodies and, per clip, its
+// motion (already on its subject's body), metadata and subject index.
+struct StandinPlan {
+  std::vector<BodySpec> bodies;
+  std::vector<Motion> motions;
+  std::vector<SequenceMeta> metas;
+  std::vector<int> owner;  // [clips] index into bodies
+  nlohmann::json config;
+};
+
+// Procedural performers first_performer.. on their own heights.
+StandinPlan procedural_plan(const StandinOptions& o) {
+  if (o.subjects < 2) throw Error("standin: need at least 2 subjects, found " + std::to_string(o.subjects));
+  if (!(o.seconds >= 2)) throw Error("standin: clips must last at least 2 s");
+  if (o.takes < 1) throw Error("standin: takes must be at least 1");
+  StandinPlan p;
+  std::mt19937_64 rng(o.seed);
+  std::normal_distribution<double> bmi(kBmiMean, kBmiSd);
+  for (int s = 0; s < o.subjects; ++s)
+    p.bodies.push_back(subject_body("s" + std::to_string(s + 1), s % 2 == 0 ? Sex::female : Sex::male,
+                                    std::round(performer_height_cm(o.first_performer + s, o.seed) * 10) / 10,
+                                    rng, bmi));
+  for (int s = 0; s < o.subjects; ++s)
+    for (Category c : kCategories)
+      for (int take = 1; take <= o.takes; ++take) {
+        GenerateOptions g;
+        g.category = c;
+        g.performer = o.first_performer + s;
+        g.take = take;
+        g.seconds = o.seconds;
+        g.height_cm = p.bodies[s].height_cm;
+        g.seed = o.seed;
+        p.motions.push_back(generate_motion(g));
+        SequenceMeta m;
+        m.motion_id = "standin_p" + std::to_string(g.performer) + "_" + category_name(c) + "_t" +
+                      std::to_string(take);
+        m.body_id = p.bodies[s].id;
+        m.name = m.motion_id + "__" + m.body_id;
+        m.performer = "P" + std::to_string(g.performer);
+        m.category = category_name(c);
+        m.take = take;
+        m.source = "procedural:standin";
+        p.metas.push_back(m);
+        p.owner.push_back(s);
+      }
+  p.config = {{"subjects", o.subjects},
+              {"first_performer", o.first_performer},
+              {"seconds", o.seconds},
+              {"takes", o.takes}};
+  return p;
+}
+
+}  // namespace
+
+std::vector<MocapClip> read_mocap_clips(const std::string& folder) {
+  namespace fs = std::filesystem;
+  const std::string path = (fs::path(folder) / "clips.csv").string();
+  std::stringstream in(read_text_file(path));
+  auto split = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      const auto b = item.find_first_not_of(" \t\r"), e = item.find_last_not_of(" \t\r");
+      out.push_back(b == std::string::npos ? "" : item.substr(b, e - b + 1));
+    }
+    if (!line.empty() && line.back() == ',') out.push_back("");
+    return out;
+  };
+  std::string text;
+  long line = 0;
+  std::vector<std::string> header;
+  while (header.empty() && std::getline(in, text)) {
+    ++line;
+    if (text.find_first_not_of(" \t\r") != std::string::npos) header = split(text);
+  }
+  auto column = [&](const std::string& name, bool required) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end() && required)
+      throw Error::at(path, line, "a header with column " + name, "'" + text + "'");
+    return it == header.end() ? -1 : int(it - header.begin());
+  };
+  const int c_file = column("file", true), c_subject = column("subject", true),
+            c_category = column("category", true), c_take = column("take", true),
+            c_mpu = column("metres_per_unit", false), c_up = column("up", false);
+  std::vector<MocapClip> clips;
+  while (std::getline(in, text)) {
+    ++line;
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto f = split(text);
+    if (f.size() != header.size())
+      throw Error::at(path, line, std::to_string(header.size()) + " fields", std::to_string(f.size()));
+    MocapClip c;
+    c.file = (fs::path(folder) / f[c_file]).string();
+    c.subject = f[c_subject];
+    if (c.subject.empty()) throw Error::at(path, line, "a subject", "an empty field");
+    try {
+      c.category = category_name(parse_category(f[c_category]));
+    } catch (const Error&) {
+      throw Error::at(path, line, "category walking, rom, freestyle or acting", "'" + f[c_category] + "'");
+    }
+    auto number = [&](int col, const char* what) {
+      try {
+        std::size_t used = 0;
+        const double v = std::stod(f[col], &used);
+        if (used == f[col].size()) return v;
+      } catch (const std::exception&) {
+      }
+      throw Error::at(path, line, what, "'" + f[col] + "'");
+    };
+    const double take = number(c_take, "a take number >= 1");
+    if (!(take >= 1) || take != std::floor(take)) throw Error::at(path, line, "a take number >= 1", "'" + f[c_take] + "'");
+    c.take = int(take);
+    if (c_mpu >= 0 && !f[c_mpu].empty()) {
+      c.metres_per_unit = number(c_mpu, "metres per unit > 0");
+      if (!(c.metres_per_unit > 0)) throw Error::at(path, line, "metres per unit > 0", "'" + f[c_mpu] + "'");
+    }
+    if (c_up >= 0 && !f[c_up].empty()) {
+      if (f[c_up] != "y" && f[c_up] != "z") throw Error::at(path, line, "up axis y or z", "'" + f[c_up] + "'");
+      c.up = f[c_up];
+    }
+    clips.push_back(c);
+  }
+  if (clips.empty()) throw Error::in(path, "no clips listed");
+  return clips;
+}
+
+namespace {
+
+// Numeric subject ids sort numerically ("2" < "14" < "141"), others after.
+bool subject_less(const std::string& a, const std::string& b) {
+  const bool na = !a.empty() && std::all_of(a.begin(), a.end(), ::isdigit);
+  const bool nb = !b.empty() && std::all_of(b.begin(), b.end(), ::isdigit);
+  if (na && nb) return a.size() != b.size() ? a.size() < b.size() : a < b;
+  if (na != nb) return na;
+  return a < b;
+}
+
+// One subject per CMU subject of the folder's clips.csv, its clips
+// retargeted onto its own sampled body.
+StandinPlan mocap_plan(const StandinOptions& o) {
+  const std::vector<MocapClip> clips = read_mocap_clips(o.mocap);
+  std::vector<std::string> subjects;
+  for (const auto& c : clips)
+    if (std::find(subjects.begin(), subjects.end(), c.subject) == subjects.end()) subjects.push_back(c.subject);
+  std::sort(subjects.begin(), subjects.end(), subject_less);
+  if (subjects.size() < 2)
+    throw Error::in(o.mocap + "/clips.csv", "need clips of at least 2 subjects, found " +
+                                                std::to_string(subjects.size()));
+  StandinPlan p;
+  std::mt19937_64 rng(o.seed ^ 0x6d6f636170ULL);  // "mocap": its own stream
+  std::normal_distribution<double> unit(0.0, 1.0), bmi(kBmiMean, kBmiSd);
+  for (std::size_t s = 0; s < subjects.size(); ++s) {
+    const Sex sex = s % 2 == 0 ? Sex::female : Sex::male;
+    const double h = sex == Sex::male ? kMaleStatureCm + kMaleStatureSdCm * unit(rng)
+                                      : kFemaleStatureCm + kFemaleStatureSdCm * unit(rng);
+    p.bodies.push_back(subject_body("s" + subjects[s], sex, std::clamp(h, 150.0, 200.0), rng, bmi));
+  }
+  nlohmann::json listed = nlohmann::json::array();
+  for (const auto& c : clips) {
+    const int s = int(std::find(subjects.begin(), subjects.end(), c.subject) - subjects.begin());
+    MotionOptions mo;
+    mo.metres_per_unit = c.metres_per_unit;
+    mo.up = c.up == "z" ? UpAxis::z : UpAxis::y;
+    mo.fps = 30;
+    p.motions.push_back(retarget(load_motion(c.file, mo), p.bodies[s].height_cm));
+    SequenceMeta m;
+    m.motion_id = "standin_" + std::filesystem::path(c.file).stem().string();
+    m.body_id = p.bodies[s].id;
+    m.name = m.motion_id + "__" + m.body_id;
+    m.performer = "CMU" + c.subject;
+    m.category = c.category;
+    m.take = c.take;
+    m.source = c.file;
+    p.metas.push_back(m);
+    p.owner.push_back(s);
+    listed.push_back(std::filesystem::path(c.file).filename().string());
+  }
+  p.config = {{"mocap", o.mocap}, {"clips", listed}};
+  return p;
+}
 
 }  // namespace
 
@@ -41,69 +249,27 @@ std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& o)
   return gain;
 }
 
+// The one mechanism for both kinds of subjects: plan -> simulate -> degrade
+// -> write.
 void write_standin(const std::string& path, const StandinOptions& o, bool force) {
-  if (o.subjects < 2) throw Error("standin: need at least 2 subjects, found " + std::to_string(o.subjects));
-  if (!(o.seconds >= 2)) throw Error("standin: clips must last at least 2 s");
-  if (o.takes < 1) throw Error("standin: takes must be at least 1");
+  check_output_path(path, force);
   auto say = [&](const std::string& s) {
     if (o.progress) o.progress(s);
   };
+  StandinPlan plan = o.mocap.empty() ? procedural_plan(o) : mocap_plan(o);
+
   SimOptions sim;
   sim.sensor.crosstalk = o.crosstalk;
   sim.sensor.noise_sd_kpa = o.noise_sd_kpa;
   sim.seed = o.seed;
   const std::vector<float> gain = standin_gain_map(sim.mat, o);
-
-  // Subjects: s1..sN, sex alternating, the performer's own height.
-  std::mt19937_64 rng(o.seed);
-  std::normal_distribution<double> bmi(kBmiMean, kBmiSd);
-  std::vector<BodySpec> specs;
-  for (int s = 0; s < o.subjects; ++s) {
-    BodySpec b;
-    b.id = "s" + std::to_string(s + 1);
-    b.sex = s % 2 == 0 ? Sex::female : Sex::male;
-    b.height_cm = std::round(performer_height_cm(o.first_performer + s, o.seed) * 10) / 10;
-    const double h_m = b.height_cm / 100;
-    b.weight_kg = std::round(std::clamp(bmi(rng), kBmiMin, kBmiMax) * h_m * h_m * 10) / 10;
-    b.weight_kg = std::clamp(b.weight_kg, kMinWeightKg, kMaxWeightKg);
-    b.role = "original";
-    validate(b);
-    specs.push_back(b);
-  }
   std::vector<Body> bodies;
-  for (const auto& b : specs) bodies.emplace_back(b);
-
-  std::vector<Motion> motions;
-  std::vector<SequenceMeta> metas;
-  std::vector<int> owner;
-  for (int s = 0; s < o.subjects; ++s)
-    for (Category c : kCategories)
-      for (int take = 1; take <= o.takes; ++take) {
-        GenerateOptions g;
-        g.category = c;
-        g.performer = o.first_performer + s;
-        g.take = take;
-        g.seconds = o.seconds;
-        g.height_cm = specs[s].height_cm;
-        g.seed = o.seed;
-        motions.push_back(generate_motion(g));
-        SequenceMeta m;
-        m.motion_id = "standin_p" + std::to_string(g.performer) + "_" + category_name(c) + "_t" +
-                      std::to_string(take);
-        m.body_id = specs[s].id;
-        m.name = m.motion_id + "__" + m.body_id;
-        m.performer = "P" + std::to_string(g.performer);
-        m.category = category_name(c);
-        m.take = take;
-        m.source = "procedural:standin";
-        metas.push_back(m);
-        owner.push_back(s);
-      }
+  for (const auto& b : plan.bodies) bodies.emplace_back(b);
   std::vector<SimJob> jobs;
-  for (std::size_t i = 0; i < motions.size(); ++i)
-    jobs.push_back({&motions[i], &bodies[owner[i]], sequence_seed(o.seed, metas[i].name)});
+  for (std::size_t i = 0; i < plan.motions.size(); ++i)
+    jobs.push_back({&plan.motions[i], &bodies[plan.owner[i]], sequence_seed(o.seed, plan.metas[i].name)});
   say("standin: simulating " + std::to_string(jobs.size()) + " clips of " +
-      std::to_string(o.subjects) + " subjects");
+      std::to_string(plan.bodies.size()) + " subjects" + (o.mocap.empty() ? "" : " (mocap " + o.mocap + ")"));
   std::vector<PressureSequence> seqs = simulate_many(jobs, sim, o.threads);
 
   // The degraded sensor: per-cell gain, dead cells, then the activation
@@ -123,21 +289,18 @@ void write_standin(const std::string& path, const StandinOptions& o, bool force)
 
   DatasetInfo info;
   info.mat = sim.mat;
-  info.fps = motions.empty() ? 30 : motions[0].fps;
+  info.fps = plan.motions.empty() ? 30 : plan.motions[0].fps;
   info.generator = std::string("ptnet ") + PTNET_VERSION + " standin";
-  nlohmann::json cfg = {{"kind", "stand-in for real recordings (simulated, not real data)"},
-                        {"subjects", o.subjects},
-                        {"first_performer", o.first_performer},
-                        {"seconds", o.seconds},
-                        {"takes", o.takes},
-                        {"crosstalk", o.crosstalk},
-                        {"noise_sd_kpa", o.noise_sd_kpa},
-                        {"gain_sd", o.gain_sd},
-                        {"dead_fraction", o.dead_fraction},
-                        {"seed", o.seed}};
+  nlohmann::json cfg = plan.config;
+  cfg["kind"] = "stand-in for real recordings (simulated, not real data)";
+  cfg["crosstalk"] = o.crosstalk;
+  cfg["noise_sd_kpa"] = o.noise_sd_kpa;
+  cfg["gain_sd"] = o.gain_sd;
+  cfg["dead_fraction"] = o.dead_fraction;
+  cfg["seed"] = o.seed;
   info.config_json = cfg.dump();
-  DatasetWriter w(path, info, specs, force);
-  for (std::size_t i = 0; i < seqs.size(); ++i) w.add(metas[i], seqs[i]);
+  DatasetWriter w(path, info, plan.bodies, force);
+  for (std::size_t i = 0; i < seqs.size(); ++i) w.add(plan.metas[i], seqs[i]);
   w.commit();
   say("standin: wrote " + path);
 }

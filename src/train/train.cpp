@@ -62,7 +62,8 @@ json options_json(const TrainOptions& o) {
               {"samples_per_epoch", o.samples_per_epoch}, {"val_samples", o.val_samples},
               {"loss", loss_name(o.loss)}, {"force_weight", o.force_weight},
               {"init", o.init},            {"val_fraction", 0.1},
-              {"fit_contact_threshold", o.fit_contact_threshold}};
+              {"fit_contact_threshold", o.fit_contact_threshold},
+              {"identity_pairs", o.identity_pairs}};
 }
 
 void check_options(const TrainOptions& o) {
@@ -405,6 +406,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
   wo.window = md.model.window;
   wo.stride = o.stride;
   wo.seed = o.seed;
+  wo.identity_pairs = o.identity_pairs;
   const WindowIndex index = WindowIndex::build(source, wo);
   if (index.val_size() == 0)
     throw Error::in(source.path(), "motions too short for a validation split (need >= " +

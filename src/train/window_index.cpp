@@ -51,7 +51,8 @@ WindowIndex WindowIndex::build(const PressureSource& source, const WindowOptions
     std::vector<Pair> pairs;
     for (int a : members)
       for (int b : members)
-        if (seqs[a].body_id != seqs[b].body_id) pairs.push_back({a, b, int(index.motions_.size())});
+        if (seqs[a].body_id != seqs[b].body_id || (options.identity_pairs && members.size() == 1))
+          pairs.push_back({a, b, int(index.motions_.size())});
     if (pairs.empty()) continue;
 
     // Validation block of ~val_fraction of the starts, at a seeded position;
