@@ -31,12 +31,7 @@ void run(const EvaluateCli& c) {
   r.threads = c.threads;
   r.raw = c.raw;
   r.force = c.force;
-  const bool quiet = globals().quiet;
-  r.progress = [quiet](int done, int total) {
-    if (!quiet && (done == total || done % 10 == 0))
-      std::cerr << "evaluate: " << done << "/" << total << " pairs\r" << (done == total ? "\n" : "")
-                << std::flush;
-  };
+  r.progress = [](int done, int total) { print_progress("evaluate", done, total, "pairs"); };
   const EvaluationResult result = run_evaluation(r);
   std::cout << result.table << "\n" << kPaperTable2Line << "\n";
   for (const auto& p : result.written) std::cout << "wrote " << p << "\n";

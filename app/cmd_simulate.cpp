@@ -82,13 +82,8 @@ void run(const SimulateCli& c) {
   if (!quiet)
     std::cerr << "simulate: " << clips.size() << " clips x " << bodies.size() << " bodies = "
               << clips.size() * bodies.size() << " sequences\n";
-  const bool tty = ::isatty(2) != 0;  // a terminal: one updating line; a log: a line per 10 %
-  o.progress = [quiet, tty](const std::string& phase, int done, int total) {
-    if (quiet) return;
-    const int step = std::max(1, total / (tty ? 100 : 10));
-    if (done % step == 0 || done == total)
-      std::cerr << phase << ": " << done << "/" << total << (phase == "load" ? " clips" : " sequences")
-                << (done == total || !tty ? "\n" : "\r") << std::flush;
+  o.progress = [](const std::string& phase, int done, int total) {
+    print_progress(phase, done, total, phase == "load" ? "clips" : "sequences");
   };
   const SimulateDatasetSummary r = simulate_dataset(clips, bodies, c.out, o);
   if (!quiet) {

@@ -1,9 +1,9 @@
 // ptnet transfer: a recorded pressure sequence of one body -> the sequence a
 // different body would have produced, with a trained model.
 //
-//   ptnet transfer --model model/ --in data.h5 --sequence walking_P1_t1__orig1 \
+//   ptnet transfer --model model/ --in data.h5 --sequence p1_walking_t1__of01
 //                  --target male,185,95 --out out.h5
-//   ptnet transfer --model model/ --in rec.npy --source female,165,60 \
+//   ptnet transfer --model model/ --in rec.npy --source female,165,60
 //                  --target male,185,95 --out out.npy
 #include <iostream>
 #include <sstream>

@@ -6,6 +6,10 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +32,17 @@ struct Globals {
   bool quiet = false;  // no progress on stderr
 };
 Globals& globals();
+
+// Progress of long work on stderr ("evaluate: 40/480 pairs"): one updating
+// line on a terminal, a line per 10 % in a log, nothing with --quiet.
+inline void print_progress(const std::string& what, int done, int total, const std::string& unit) {
+  if (globals().quiet) return;
+  static const bool tty = ::isatty(2) != 0;
+  const int step = std::max(1, total / (tty ? 100 : 10));
+  if (done % step == 0 || done == total)
+    std::cerr << what << ": " << done << "/" << total << " " << unit << (done == total || !tty ? "\n" : "\r")
+              << std::flush;
+}
 
 }  // namespace ptnet::cli
 
