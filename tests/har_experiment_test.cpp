@@ -3,6 +3,7 @@
 // that mean shift must separate and the classifiers must learn; bad subject
 // lists give one-line errors.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #ifdef PTNET_HAR_EXPERIMENT
 #include <cmath>
@@ -49,7 +50,7 @@ PressureSequence make(const std::string& category, int subject, std::uint64_t se
 // One file per test (CTest runs tests in parallel).
 std::string write_dataset(const std::string& name) {
   const std::string path =
-      (std::filesystem::temp_directory_path() / ("ptnet_har_" + name + ".h5")).string();
+      (std::filesystem::temp_directory_path() / ("ptnet_har_" + name + "_" + std::to_string(::getpid()) + ".h5")).string();
   DatasetInfo info;
   info.mat = MatSpec{20, 12, 0.02};
   info.generator = "har_experiment_test";
@@ -119,7 +120,7 @@ TEST(HarExperiment, TwoActivitiesAreFoundAndLearnedFromEverySource) {
 
   // The figure: a PNG, refused without force once it exists.
   const std::string png =
-      (std::filesystem::temp_directory_path() / "ptnet_har_two_activities.png").string();
+      (std::filesystem::temp_directory_path() / ("ptnet_har_two_activities_" + std::to_string(::getpid()) + ".png")).string();
   write_confusion_png(png, r, /*force=*/true);
   std::ifstream f(png, std::ios::binary);
   char magic[8] = {};

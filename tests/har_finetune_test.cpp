@@ -2,6 +2,7 @@
 // training subjects only, marked for the training protocol, and trains as
 // identity pairs since each recording is on one body.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #if defined(PTNET_HAR_IMPORT) && defined(PTNET_HAR_TRANSFER)
 #include <filesystem>
@@ -50,7 +51,7 @@ std::string write_real(const fs::path& dir) {
 }  // namespace
 
 TEST(HarFinetune, SetHoldsOnlyTheTrainingSubjectsReadyForTraining) {
-  const fs::path dir = fs::temp_directory_path() / "ptnet_har_finetune_set";
+  const fs::path dir = fs::temp_directory_path() / ("ptnet_har_finetune_set_" + std::to_string(::getpid()));
   const std::string real = write_real(dir), out = (dir / "finetune.h5").string();
   har::write_finetune_set(real, {"1", "s2"}, out, false);
   const Dataset d = Dataset::open(out);
@@ -85,7 +86,7 @@ TEST(HarFinetune, SetHoldsOnlyTheTrainingSubjectsReadyForTraining) {
 }
 
 TEST(HarFinetune, BadSubjectListsAreOneLineErrors) {
-  const fs::path dir = fs::temp_directory_path() / "ptnet_har_finetune_bad";
+  const fs::path dir = fs::temp_directory_path() / ("ptnet_har_finetune_bad_" + std::to_string(::getpid()));
   const std::string real = write_real(dir), out = (dir / "finetune.h5").string();
   auto message = [&](const std::vector<std::string>& subjects) {
     try {

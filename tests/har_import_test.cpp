@@ -1,5 +1,6 @@
 // ptnet import: recordings listed in a manifest become a dataset.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #ifdef PTNET_HAR_IMPORT
 #include <filesystem>
@@ -16,7 +17,7 @@ using namespace ptnet;
 namespace {
 struct Folder {
   fs::path dir;
-  explicit Folder(const std::string& name) : dir(fs::temp_directory_path() / name) {
+  explicit Folder(const std::string& name) : dir(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
     fs::remove_all(dir);
     fs::create_directories(dir);
   }

@@ -2,6 +2,7 @@
 // cells), the dataset it writes, and the mocap variant (one subject per CMU
 // subject of ../shared/mocap).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #ifdef PTNET_HAR_STANDIN
 #include <algorithm>
@@ -37,7 +38,7 @@ TEST(HarStandin, GainMapIsSeededWithTheRequestedDeadCells) {
 
 TEST(HarStandin, WritesSubjectsOnTheirOwnBodiesWithDeadCellsSilent) {
   const std::string path =
-      (std::filesystem::temp_directory_path() / "ptnet_har_standin_test.h5").string();
+      (std::filesystem::temp_directory_path() / ("ptnet_har_standin_test_" + std::to_string(::getpid()) + ".h5")).string();
   StandinOptions o;
   o.subjects = 2;
   o.seconds = 2;
@@ -72,7 +73,7 @@ TEST(HarStandin, MocapClipsAreGroupedByCmuSubjectOnTheirOwnBodies) {
   std::map<std::string, std::set<std::string>> expected;  // subject -> categories, from clips.csv
   for (const auto& c : clips) expected["s" + c.subject].insert(c.category);
 
-  const std::string path = (fs::temp_directory_path() / "ptnet_har_standin_mocap_test.h5").string();
+  const std::string path = (fs::temp_directory_path() / ("ptnet_har_standin_mocap_test_" + std::to_string(::getpid()) + ".h5")).string();
   StandinOptions o;
   o.mocap = PTNET_SHARED_MOCAP;
   o.threads = 1;
@@ -120,7 +121,7 @@ TEST(HarStandin, MocapClipsAreGroupedByCmuSubjectOnTheirOwnBodies) {
 
 TEST(HarStandin, BadClipsCsvLinesNameFileAndLine) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "ptnet_har_standin_bad_clips";
+  const fs::path dir = fs::temp_directory_path() / ("ptnet_har_standin_bad_clips_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string csv = (dir / "clips.csv").string();
   auto message = [&](const std::string& text) {
