@@ -545,9 +545,10 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
   char line[320];
   std::snprintf(line, sizeof line,
                 "train: best epoch %d, val %.6f, val RMSE %.3f kPa (copy %.3f, weight-scale %.3f, "
-                "all-zero %.3f, zoom %.3f); binary R^2 %.3f (raw %.3f, copy %.3f) at contact threshold %.1f kPa; %.1f s",
+                "all-zero %.3f%s); binary R^2 %.3f (raw %.3f, copy %.3f) at contact threshold %.1f kPa; %.1f s",
                 s.best_epoch, s.best_val, v.rmse_kpa, v.copy_rmse_kpa, v.scale_rmse_kpa, v.zero_rmse_kpa,
-                v.zoom_rmse_kpa, v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)], v.binary_r2.front(),
+                std::isfinite(v.zoom_rmse_kpa) ? fmt(", body scale %.3f", v.zoom_rmse_kpa).c_str() : "",
+                v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)], v.binary_r2.front(),
                 v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
   log(line);
   return result;
