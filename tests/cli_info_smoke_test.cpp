@@ -14,36 +14,18 @@
 #include <string>
 #include <vector>
 
+#include "cli_test_util.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using ptnet::testing_cli::RunResult;
+using ptnet::testing_cli::slurp;
 
 RunResult run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path();
-  const std::string tag = "ptnet_info_smoke_" + std::to_string(::getpid());
-  const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  const std::string cmd = std::string("'") + PTNET_BINARY + "' " + args + " >'" + out.string() +
-                          "' 2>'" + err.string() + "'";
-  const int raw = std::system(cmd.c_str());
-  RunResult r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
+  return ptnet::testing_cli::run_ptnet(
+      args, fs::temp_directory_path() / ("ptnet_info_smoke_" + std::to_string(::getpid())));
 }
 
 }  // namespace

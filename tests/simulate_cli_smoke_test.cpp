@@ -13,21 +13,14 @@
 #include <sstream>
 #include <string>
 
+#include "cli_test_util.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using ptnet::testing_cli::RunResult;
+using ptnet::testing_cli::slurp;
 
 void spit(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
@@ -45,19 +38,7 @@ class SimulateCli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs ptnet in dir_ with `args`.
-  RunResult run(const std::string& args) const {
-    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(PTNET_BINARY) + "' " + args + " >'" +
-                            out.string() + "' 2>'" + err.string() + "'";
-    const int raw = std::system(cmd.c_str());
-    RunResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  RunResult run(const std::string& args) const { return ptnet::testing_cli::run_ptnet(args, dir_ / ".run", dir_); }
 
   // Outputs or temporaries in dir_ (.h5 files, dot files) other than `inputs`.
   int stray_files(const std::vector<std::string>& inputs) const {

@@ -1,0 +1,45 @@
+// cli_test_util.hpp: running the real ptnet binary (PTNET_BINARY) from the
+// smoke tests, with its exit status, stdout and stderr.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace ptnet::testing_cli {
+
+struct RunResult {
+  int status = -1;       // exit status (128 + signal if killed)
+  std::string out, err;  // stdout, stderr
+};
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Runs `ptnet ARGS` (in folder `cwd` if given), capturing its output through
+// two scratch files `scratch`.out / `scratch`.err, removed afterwards.
+inline RunResult run_ptnet(const std::string& args, const std::filesystem::path& scratch,
+                           const std::filesystem::path& cwd = {}) {
+  const std::filesystem::path out = scratch.string() + ".out", err = scratch.string() + ".err";
+  const std::string cd = cwd.empty() ? "" : "cd '" + cwd.string() + "' && ";
+  const std::string cmd = cd + "'" + std::string(PTNET_BINARY) + "' " + args + " >'" + out.string() + "' 2>'" +
+                          err.string() + "'";
+  const int raw = std::system(cmd.c_str());
+  RunResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+}  // namespace ptnet::testing_cli
