@@ -3,48 +3,17 @@
 #include "ptnet/simulate_dataset.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <exception>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/parallel.hpp"
 
 namespace ptnet {
 namespace {
-
-// Runs f(i) for i in [0, n) on `threads` threads; rethrows the error of the
-// lowest failing index (deterministic whatever the scheduling).
-template <class F>
-void parallel_for(int n, int threads, F f) {
-  threads = std::max(1, std::min(threads, n));
-  std::vector<std::exception_ptr> errors(std::size_t(std::max(n, 0)));
-  std::atomic<int> next{0};
-  std::atomic<bool> failed{false};
-  auto work = [&] {
-    for (int i; !failed && (i = next++) < n;) {
-      try {
-        f(i);
-      } catch (...) {
-        errors[std::size_t(i)] = std::current_exception();
-        failed = true;
-      }
-    }
-  };
-  if (threads == 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    for (int k = 0; k < threads; ++k) pool.emplace_back(work);
-    for (auto& t : pool) t.join();
-  }
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
-}
 
 std::string default_config(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
                            const SimulateDatasetOptions& o) {
