@@ -18,14 +18,7 @@ namespace ptnet {
 namespace {
 using testing_util::TempDir;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing_util::error_of;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -4,10 +4,12 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
 
 namespace ptnet::testing_util {
 
@@ -32,6 +34,16 @@ struct TempDir {
     return names;
   }
 };
+
+// The message of the ptnet::Error that f throws, or "(no error)".
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 inline std::vector<BodySpec> two_bodies() {
   return {BodySpec{"b1", Sex::female, 158, 52, "retargeted"},

@@ -11,6 +11,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/simulate_dataset.hpp"
+#include "data_test_util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -26,14 +27,7 @@ std::string slurp(const fs::path& p) {
 
 void spit(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing_util::error_of;
 
 class SimulateDataset : public ::testing::Test {
  protected:
