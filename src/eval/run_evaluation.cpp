@@ -14,11 +14,6 @@ EvaluationResult run_evaluation(const EvaluationRun& run) {
   to.threads = run.threads;
   to.raw = run.raw;
   const Transfer net(run.model_dir, to);
-  if (!(net.model().mat == dataset.info().mat))
-    throw Error::in(run.data_path, "mat is " + std::to_string(dataset.info().mat.rows) + " x " +
-                                       std::to_string(dataset.info().mat.cols) + ", the model was built for " +
-                                       std::to_string(net.model().mat.rows) + " x " +
-                                       std::to_string(net.model().mat.cols));
   const TransferFn model = [&](const PressureSequence& s, const BodySpec& a, const BodySpec& b) {
     return net.run(s, a, b);
   };

@@ -122,15 +122,19 @@ class Batcher {
     b.ta = torch::empty({n, kAttributes}, torch::kFloat32);
     float *x = b.x.data_ptr<float>(), *y = b.y.data_ptr<float>();
     float *sa = b.sa.data_ptr<float>(), *ta = b.ta.data_ptr<float>();
-    std::vector<float> raw(align_ == Align::zoom ? std::size_t(per) : 0);
+    // Aligned input: the recorded source windows go to b.src (kept for the
+    // baselines) or a scratch window, and their zoom to b.x.
+    const bool aligned = align_ == Align::zoom;
+    if (aligned && with_source) b.src = torch::empty_like(b.x);
+    std::vector<float> scratch(aligned && !with_source ? std::size_t(per) : 0);
     for (int i = 0; i < n; ++i) {
       const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
-      if (align_ == Align::zoom) {
-        // Network input = the source window aligned to the target body.
-        cache_.read(p.source, refs[i].start, t, raw.data());
+      if (aligned) {
+        float* recorded = with_source ? b.src.data_ptr<float>() + i * per : scratch.data();
+        cache_.read(p.source, refs[i].start, t, recorded);
         const BodySpec& a = body_of(p.source);
         const BodySpec& z = body_of(p.target);
-        zoom_frames(raw.data(), x + i * per, t, m.rows, m.cols, body_scale(a.height_cm, z.height_cm),
+        zoom_frames(recorded, x + i * per, t, m.rows, m.cols, body_scale(a.height_cm, z.height_cm),
                     body_gain(a.height_cm, a.weight_kg, z.height_cm, z.weight_kg));
       } else {
         cache_.read(p.source, refs[i].start, t, x + i * per);
@@ -141,15 +145,8 @@ class Batcher {
     }
     b.x.mul_(inv_scale_);
     b.y.mul_(inv_scale_);
-    b.src = b.x;
-    if (align_ == Align::zoom && with_source) {
-      b.src = torch::empty_like(b.x);
-      for (int i = 0; i < n; ++i) {
-        const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
-        cache_.read(p.source, refs[i].start, t, b.src.data_ptr<float>() + i * per);
-      }
-      b.src.mul_(inv_scale_);
-    }
+    if (aligned && with_source) b.src.mul_(inv_scale_);
+    else b.src = b.x;
     if (device_ != torch::kCPU) {
       b.x = b.x.to(device_), b.y = b.y.to(device_), b.sa = b.sa.to(device_), b.ta = b.ta.to(device_);
       b.src = b.src.to(device_);
