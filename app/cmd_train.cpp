@@ -15,6 +15,7 @@ namespace {
 struct TrainCli {
   std::string data, out, preset = "paper", device = "cpu", arch, align, channels, loss, init;
   int epochs = 0, batch = 0, micro_batch = 0, patience = 0, threads = -1, stride = 0, hidden = 0, latent = 0;
+  int window = 0, context = -1, crop_rows = -1;
   int lr_halve_every = 0;
   long long samples_per_epoch = -1, val_samples = -1;
   double lr = 0, cache_mb = 0;
@@ -61,6 +62,9 @@ void run(const TrainCli& c) {
   if (!c.channels.empty()) o.model.channels = parse_channels(c.channels);
   if (c.hidden) o.model.hidden = c.hidden;
   if (c.latent) o.model.latent = c.latent;
+  if (c.window) o.model.window = c.window;
+  if (c.context >= 0) o.model.context = c.context;
+  if (c.crop_rows >= 0) o.crop_rows = c.crop_rows;
   if (!c.loss.empty()) {
     if (c.loss == "mse") o.loss = Loss::mse;
     else if (c.loss == "mse+force") o.loss = Loss::mse_force;
@@ -85,11 +89,9 @@ void setup(CLI::App& app) {
       "Train PressureTransferNet on a dataset (pairs of the same motion on two retargeted bodies,\n"
       "take-1 motions; original bodies and take-2 motions are never used) into a model folder:\n"
       "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr.\n"
-      "Presets: paper = the paper's network, batch 1028, Adam lr 0.01 halved every 20 epochs, 500 epochs,\n"
-      "patience 50, widths 64/128/256, every window at stride 1; fast = ours: residual network on\n"
-      "body-scale aligned input (--arch residual --align zoom), widths 16/32/64, batch 64, lr 2e-3\n"
-      "halved every 5 epochs, 15 epochs of 4096 windows at stride 2 (minutes on a CPU core).\n"
-      "Options left out keep the preset's value.");
+      "Presets:\n  paper = the paper's: " + TrainOptions::from_preset("paper").summary() +
+      "\n  fast  = ours: " + TrainOptions::from_preset("fast").summary() +
+      "\nOptions left out keep the preset's value.");
   cmd->add_option("--data", opt->data, "Dataset file (HDF5, ptnet simulate)")->required();
   cmd->add_option("--out", opt->out, "Model folder to create")->required();
   cmd->add_option("--preset", opt->preset, "paper | fast")->capture_default_str();
@@ -106,13 +108,19 @@ void setup(CLI::App& app) {
   cmd->add_option("--stride", opt->stride, "Frames between window starts");
   cmd->add_option("--samples-per-epoch", opt->samples_per_epoch, "Training windows per epoch (0 = all)");
   cmd->add_option("--val-samples", opt->val_samples, "Validation windows (0 = all)");
-  cmd->add_option("--arch", opt->arch, "faithful (the paper's) | skip (U-Net skip connections) | residual (skip, learns a correction to the source)");
+  cmd->add_option("--arch", opt->arch,
+                  "faithful (the paper's) | skip (U-Net skip connections) | residual (skip, learns a correction "
+                  "to the source) | frame (per-frame conditional U-Net with FiLM at every scale, a correction)");
   cmd->add_option("--align", opt->align,
                   "none (the paper's) | zoom (input aligned to the target body: zoomed by the height ratio "
                   "about the mat centre, scaled by weight over area ratio)");
   cmd->add_option("--channels", opt->channels, "Conv widths of the three blocks, e.g. 64,128,256");
   cmd->add_option("--hidden", opt->hidden, "Width of the FC layer after the convolutions (128)");
   cmd->add_option("--latent", opt->latent, "Latent width (128)");
+  cmd->add_option("--window", opt->window, "Frames per window (the paper's 30; --arch frame works per frame: 1)");
+  cmd->add_option("--context", opt->context, "--arch frame: neighbouring frames on each side as input (0)");
+  cmd->add_option("--crop-rows", opt->crop_rows,
+                  "--arch frame: train on this many mat rows around the pressure (0 = whole mat)");
   cmd->add_option("--loss", opt->loss, "mse (the paper's content loss) | mse+force (adds total-force error)");
   cmd->add_option("--cache-mb", opt->cache_mb, "Budget of the whole-sequence cache (default 1024)");
   cmd->add_flag("--no-contact-threshold", opt->no_contact_threshold,

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "ptnet/error.hpp"
 #include "ptnet/model.hpp"
@@ -33,7 +34,7 @@ TEST(ModelNet, PooledSizesHalveWithCeiling) {
 
 TEST(ModelNet, OutputShapeAndNonNegativeEveryArchitecture) {
   torch::manual_seed(0);
-  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual}) {
+  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual, Arch::frame}) {
     PressureTransferNet net(small(arch));
     auto x = torch::rand({3, 30, 80, 28});
     auto a = torch::randn({3, 3});
@@ -44,11 +45,14 @@ TEST(ModelNet, OutputShapeAndNonNegativeEveryArchitecture) {
 }
 
 TEST(ModelNet, ParameterCountMatchesClosedForm) {
-  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual}) {
+  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual, Arch::frame}) {
     ModelConfig c = small(arch);
     PressureTransferNet net(c);
     EXPECT_EQ(parameter_count(*net), parameter_count(c)) << arch_name(arch);
   }
+  ModelConfig with_context = small(Arch::frame);
+  with_context.context = 2;
+  EXPECT_EQ(parameter_count(*PressureTransferNet(with_context)), parameter_count(with_context));
   // The paper's widths (64/128/256, 128, 128): 30x64x9+64 + ... (see model_config.cpp).
   ModelConfig paper = ModelConfig::paper();
   PressureTransferNet net(paper);
@@ -78,7 +82,7 @@ TEST(ModelNet, WrongInputShapeIsAClearError) {
 
 TEST(ModelNet, OneAdamStepLowersTheLossOnAFixedBatch) {
   torch::manual_seed(1);
-  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual}) {
+  for (Arch arch : {Arch::faithful, Arch::skip, Arch::residual, Arch::frame}) {
     PressureTransferNet net(small(arch));
     net->train();
     auto x = torch::rand({8, 30, 80, 28});
@@ -136,6 +140,61 @@ TEST(ModelNet, ConfigValidation) {
   EXPECT_EQ(parse_arch("skip"), Arch::skip);
   EXPECT_EQ(parse_arch("residual"), Arch::residual);
   EXPECT_EQ(model_config_from_json(to_json(small(Arch::residual)), "config.json").arch, Arch::residual);
+  ModelConfig f = small(Arch::frame);
+  f.context = 3;
+  f.window = 1;
+  const ModelConfig back = model_config_from_json(to_json(f), "config.json");
+  EXPECT_EQ(back.arch, Arch::frame);
+  EXPECT_EQ(back.context, 3);
+  EXPECT_EQ(back.window, 1);
+  f.context = -1;
+  EXPECT_THROW(validate(f), Error);
+}
+
+TEST(ModelNet, FrameArchIsPerFrameAndStartsAsItsInput) {
+  // Untrained, the frame network is its input (zero-initialised head and FiLM).
+  // Its output for a frame depends only on that frame and its context: the
+  // same frame in two windows of different lengths gives the same output, and
+  // after training steps the target attributes change the output.
+  torch::manual_seed(4);
+  ModelConfig c = small(Arch::frame);
+  c.window = 5;
+  c.context = 1;
+  PressureTransferNet net(c);
+  auto x = torch::rand({2, 5, 80, 28});
+  auto a = torch::randn({2, 3});
+  {
+    net->eval();
+    torch::NoGradGuard no_grad;
+    EXPECT_EQ((net->forward(x, a, a.flip(0)) - x).abs().max().item<float>(), 0.0f);
+  }
+  net->train();
+  torch::optim::Adam opt(net->parameters(), torch::optim::AdamOptions(1e-2));
+  for (int i = 0; i < 5; ++i) {
+    opt.zero_grad();
+    auto loss = torch::mse_loss(net->forward(x, a, a.flip(0)), x * (1 + a.flip(0).select(1, 2).view({2, 1, 1, 1})));
+    loss.backward();
+    opt.step();
+  }
+  net->eval();
+  torch::NoGradGuard no_grad;
+  auto y = net->forward(x, a, a.flip(0));
+  EXPECT_GT((y - net->forward(x, a, a)).abs().max().item<float>(), 1e-4f);  // target attributes matter
+  // Frames 1..3 have their whole context inside both windows.
+  auto inner = net->forward_raw(x.narrow(1, 0, 5), a, a.flip(0)).narrow(1, 1, 3);
+  ModelConfig c3 = c;
+  c3.window = 3;
+  PressureTransferNet n3(c3);
+  torch::serialize::OutputArchive ar;
+  write_weights(net, ar);
+  std::stringstream buf;
+  ar.save_to(buf);
+  torch::serialize::InputArchive in;
+  in.load_from(buf);
+  read_weights(n3, in, "memory");
+  n3->eval();
+  auto middle = n3->forward_raw(x.narrow(1, 1, 3), a, a.flip(0)).narrow(1, 1, 1);
+  EXPECT_LT((middle - inner.narrow(1, 1, 1)).abs().max().item<float>(), 1e-5f);
 }
 
 TEST(ModelNet, ResidualWithAZeroDecoderCopiesTheSource) {

@@ -18,6 +18,18 @@
 // output (normalised pressure) is non-negative. Arch::skip also concatenates
 // the encoder block's pre-pool feature map before each ConvTranspose2d.
 //
+// Arch::frame (ours) is a different network behind the same interface
+// (FrameNetImpl below): each of the T frames of a window goes through a
+// conditional U-Net on its own, with `context` frames on each side (replicated
+// at the window's ends) as extra input channels, and the result is added to
+// the frame. Every convolution is followed by BatchNorm (no affine) and a
+// FiLM modulation (1 + gamma, beta) computed by a small MLP from the source
+// and target attributes and two global measures of the frame (log total
+// pressure, loaded share), so the body attributes act at every scale:
+//   enc0 K->C1 (H x W), pool, enc1 C1->C2 (H1 x W1), pool, enc2 C2->C3 and
+//   mid C3->C3 (H2 x W2); dec1: upsample, 1x1 C3->C2 + enc1, C2->C2;
+//   dec0: upsample, 1x1 C2->C1 + enc0, C1->C1; head 3x3 C1->1 (zero-init).
+//
 // Only the model and train stages include this header (it pulls in Torch).
 #pragma once
 
@@ -28,6 +40,27 @@
 #include "ptnet/model_config.hpp"
 
 namespace ptnet {
+
+// Arch::frame's network: frames [M, K, H, W] (K = 1 + 2 context, the centre
+// frame in the middle), conditions [M, 2A + 2] (source, target attributes,
+// frame globals) ->
+// correction [M, 1, H, W] (normalised pressure, any sign).
+class FrameNetImpl : public torch::nn::Module {
+ public:
+  explicit FrameNetImpl(const ModelConfig& config);
+  torch::Tensor forward(const torch::Tensor& frames, const torch::Tensor& conditions);
+
+ private:
+  // conv 3x3 (no bias), BatchNorm (no affine), FiLM with film[:, offset...], ReLU
+  torch::Tensor block(int i, const torch::Tensor& x, const torch::Tensor& film);
+  std::vector<torch::nn::Conv2d> convs_;          // enc0, enc1, enc2, mid, dec1, dec0
+  std::vector<torch::nn::BatchNorm2d> norms_;
+  std::vector<int> film_offset_;                  // first gamma column of each block in the FiLM output
+  torch::nn::Conv2d lateral1{nullptr}, lateral0{nullptr}, head{nullptr};
+  torch::nn::Linear film1{nullptr}, film2{nullptr};
+  torch::nn::MaxPool2d pool{nullptr};
+};
+TORCH_MODULE(FrameNet);
 
 class PressureTransferNetImpl : public torch::nn::Module {
  public:
@@ -53,6 +86,7 @@ class PressureTransferNetImpl : public torch::nn::Module {
   torch::nn::Linear fc_features, fc_latent, fc_decode;
   torch::nn::ConvTranspose2d deconv3, deconv2, deconv1;
   torch::nn::BatchNorm2d dbn3, dbn2;
+  FrameNet frame{nullptr};  // Arch::frame only (the layers above are then empty)
 };
 TORCH_MODULE(PressureTransferNet);
 

@@ -29,6 +29,7 @@ namespace ptnet {
 
 inline constexpr int kWindow = 30;        // frames per window (input channels)
 inline constexpr int kAttributes = 3;     // sex, height, weight
+inline constexpr int kFrameGlobals = 2;   // Arch::frame: per-frame measures beside the attributes (model.hpp)
 inline constexpr int kHidden = 128;       // width of the FC layer after the encoder's convolutions
 inline constexpr int kLatent = 128;       // width of the latent after the source attributes
 inline constexpr int kPoolLevels = 3;     // encoder blocks (each halves rows and cols, rounding up)
@@ -44,8 +45,15 @@ inline constexpr int kModelVersion = 1;
 // skip, and the network predicts a correction added to its input window
 // (output = ReLU(input + decoder)): an untrained residual model is the copy
 // baseline, training learns what changes from the source body to the target.
-enum class Arch { faithful, skip, residual };
-inline bool has_skips(Arch arch) { return arch != Arch::faithful; }
+// frame (ours): a conditional U-Net applied to each frame on its own (with
+// `context` neighbouring frames of the window as extra input channels), at
+// full resolution, the body attributes injected at every scale (FiLM); the
+// output is a correction added to the frame (zero-initialised). The window is
+// only a batch of frames to it: any window length works, so the fast preset
+// trains on single frames (window 1).
+enum class Arch { faithful, skip, residual, frame };
+inline bool has_skips(Arch arch) { return arch == Arch::skip || arch == Arch::residual; }
+inline bool is_residual(Arch arch) { return arch == Arch::residual || arch == Arch::frame; }
 
 // What the network sees of the source window. none: the recorded maps (the
 // paper). zoom: the maps aligned to the target body first, zoomed by the
@@ -55,7 +63,7 @@ inline bool has_skips(Arch arch) { return arch != Arch::faithful; }
 enum class Align { none, zoom };
 Align parse_align(const std::string& text);  // "none" | "zoom"; throws Error
 const char* align_name(Align align);
-Arch parse_arch(const std::string& text);  // "faithful" | "skip" | "residual"; throws Error
+Arch parse_arch(const std::string& text);  // "faithful" | "skip" | "residual" | "frame"; throws Error
 const char* arch_name(Arch arch);
 
 struct ModelConfig {
@@ -67,6 +75,7 @@ struct ModelConfig {
   std::array<int, 3> channels = kPaperChannels;  // conv widths of encoder blocks 1-3
   int hidden = kHidden;                    // FC after the flattened conv features
   int latent = kLatent;                    // FC after concatenating the source attributes
+  int context = 0;                         // Arch::frame: neighbouring frames on each side as input
   static ModelConfig paper() { return {}; }
   static ModelConfig fast() {
     ModelConfig c;

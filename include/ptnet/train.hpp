@@ -185,6 +185,8 @@ struct TrainOptions {
   Loss loss = Loss::mse;
   double force_weight = 0.1;        // weight of the total-force term (Loss::mse_force)
   double cache_mb = 1024;           // whole-sequence cache budget
+  int crop_rows = 0;                // Arch::frame: train on this many mat rows around the window's
+                                    // pressure (0 = the whole mat); validation uses the whole mat
   bool fit_contact_threshold = true;  // after training, fit the output activation threshold
   bool resume = false;              // continue from OUT/checkpoint.pt
   std::string init;                 // start from this model folder's weights
@@ -195,11 +197,15 @@ struct TrainOptions {
   // "paper": the paper's network (faithful, no alignment), batch 1028, lr
   // 0.01 halved every 20 epochs, 500 epochs, patience 50, widths
   // 64/128/256, stride 1, every window, 2 threads.
-  // "fast": ours -- residual network on body-scale aligned input (--arch
-  // residual --align zoom), widths 16/32/64, batch 64, lr 2e-3 halved every 5
-  // epochs, 15 epochs of 4096 windows at stride 2, 1024 validation windows,
-  // 1 thread (~7 min on the embedded dataset on one core of this machine).
+  // "fast": ours -- the per-frame conditional U-Net on body-scale aligned
+  // input (--arch frame --align zoom --window 1), widths 16/32/48, FiLM MLP
+  // 64, batch 64 frames on 40-row crops, lr 3e-3 halved every 4 epochs, 12
+  // epochs of 8192 frames, 4096 validation frames, 1 thread.
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
+  // One line naming the architecture and schedule ("frame 16/32/48 on zoom-aligned
+  // input, window 1, batch 64, lr 0.003 halved every 4 epochs, ..."): the
+  // presets are described from their values, never by hand.
+  std::string summary() const;
 };
 
 struct TrainResult {

@@ -34,23 +34,34 @@ const ModelConfig& checked(const ModelConfig& c) {
 
 }  // namespace
 
+// The window network's layers, or empty holders for Arch::frame.
+template <typename Holder, typename... Args>
+Holder layer(const ModelConfig& c, Args&&... args) {
+  if (c.arch == Arch::frame) return Holder(nullptr);
+  return Holder(std::forward<Args>(args)...);
+}
+
 PressureTransferNetImpl::PressureTransferNetImpl(const ModelConfig& config)
     : config_(checked(config)),
-      conv1(conv_options(config.window, config.channels[0])),
-      conv2(conv_options(config.channels[0], config.channels[1])),
-      conv3(conv_options(config.channels[1], config.channels[2])),
-      bn1(config.channels[0]),
-      bn2(config.channels[1]),
-      bn3(config.channels[2]),
-      pool(nn::MaxPool2dOptions(2).stride(2).ceil_mode(true)),
-      fc_features(flat_size(config), config.hidden),
-      fc_latent(config.hidden + kAttributes, config.latent),
-      fc_decode(config.latent + kAttributes, flat_size(config)),
-      deconv3(deconv_options(config.channels[2] * skip_factor(config), config.channels[1])),
-      deconv2(deconv_options(config.channels[1] * skip_factor(config), config.channels[0])),
-      deconv1(deconv_options(config.channels[0] * skip_factor(config), config.window)),
-      dbn3(config.channels[1]),
-      dbn2(config.channels[0]) {
+      conv1(layer<nn::Conv2d>(config, conv_options(config.window, config.channels[0]))),
+      conv2(layer<nn::Conv2d>(config, conv_options(config.channels[0], config.channels[1]))),
+      conv3(layer<nn::Conv2d>(config, conv_options(config.channels[1], config.channels[2]))),
+      bn1(layer<nn::BatchNorm2d>(config, config.channels[0])),
+      bn2(layer<nn::BatchNorm2d>(config, config.channels[1])),
+      bn3(layer<nn::BatchNorm2d>(config, config.channels[2])),
+      pool(layer<nn::MaxPool2d>(config, nn::MaxPool2dOptions(2).stride(2).ceil_mode(true))),
+      fc_features(layer<nn::Linear>(config, flat_size(config), config.hidden)),
+      fc_latent(layer<nn::Linear>(config, config.hidden + kAttributes, config.latent)),
+      fc_decode(layer<nn::Linear>(config, config.latent + kAttributes, flat_size(config))),
+      deconv3(layer<nn::ConvTranspose2d>(config, deconv_options(config.channels[2] * skip_factor(config), config.channels[1]))),
+      deconv2(layer<nn::ConvTranspose2d>(config, deconv_options(config.channels[1] * skip_factor(config), config.channels[0]))),
+      deconv1(layer<nn::ConvTranspose2d>(config, deconv_options(config.channels[0] * skip_factor(config), config.window))),
+      dbn3(layer<nn::BatchNorm2d>(config, config.channels[1])),
+      dbn2(layer<nn::BatchNorm2d>(config, config.channels[0])) {
+  if (config.arch == Arch::frame) {
+    frame = register_module("frame", FrameNet(config));
+    return;
+  }
   register_module("conv1", conv1);
   register_module("conv2", conv2);
   register_module("conv3", conv3);
@@ -75,6 +86,88 @@ PressureTransferNetImpl::PressureTransferNetImpl(const ModelConfig& config)
   }
 }
 
+// ------------------------------------------------------------ Arch::frame
+
+namespace {
+// Blocks of the frame U-Net: {input width, output width} from the config.
+std::array<std::array<int, 2>, 6> frame_blocks(const ModelConfig& c) {
+  const int k = 1 + 2 * c.context, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
+  return {{{k, c1}, {c1, c2}, {c2, c3}, {c3, c3}, {c2, c2}, {c1, c1}}};  // enc0 enc1 enc2 mid dec1 dec0
+}
+}  // namespace
+
+FrameNetImpl::FrameNetImpl(const ModelConfig& c) {
+  int film_width = 0;
+  int i = 0;
+  for (const auto& [in, out] : frame_blocks(c)) {
+    convs_.push_back(register_module("conv" + std::to_string(i),
+                                     nn::Conv2d(nn::Conv2dOptions(in, out, 3).padding(1).bias(false))));
+    norms_.push_back(register_module("norm" + std::to_string(i),
+                                     nn::BatchNorm2d(nn::BatchNorm2dOptions(out).affine(false))));
+    film_offset_.push_back(film_width);
+    film_width += 2 * out;  // gamma, beta
+    ++i;
+  }
+  lateral1 = register_module("lateral1", nn::Conv2d(nn::Conv2dOptions(c.channels[2], c.channels[1], 1)));
+  lateral0 = register_module("lateral0", nn::Conv2d(nn::Conv2dOptions(c.channels[1], c.channels[0], 1)));
+  head = register_module("head", nn::Conv2d(nn::Conv2dOptions(c.channels[0], 1, 3).padding(1)));
+  film1 = register_module("film1", nn::Linear(2 * kAttributes + kFrameGlobals, c.hidden));
+  film2 = register_module("film2", nn::Linear(c.hidden, film_width));
+  pool = register_module("pool", nn::MaxPool2d(nn::MaxPool2dOptions(2).stride(2).ceil_mode(true)));
+  // Zero-initialised: an untrained model is its input, with FiLM the identity.
+  torch::NoGradGuard no_grad;
+  head->weight.zero_();
+  head->bias.zero_();
+  film2->weight.zero_();
+  film2->bias.zero_();
+}
+
+torch::Tensor FrameNetImpl::block(int i, const torch::Tensor& x, const torch::Tensor& film) {
+  const int width = int(convs_[std::size_t(i)]->options.out_channels());
+  const int o = film_offset_[std::size_t(i)];
+  auto gamma = film.narrow(1, o, width).unsqueeze(2).unsqueeze(3);          // [M, C, 1, 1]
+  auto beta = film.narrow(1, o + width, width).unsqueeze(2).unsqueeze(3);   // [M, C, 1, 1]
+  auto y = norms_[std::size_t(i)](convs_[std::size_t(i)](x));
+  return torch::relu(y * (1 + gamma) + beta);
+}
+
+torch::Tensor FrameNetImpl::forward(const torch::Tensor& frames, const torch::Tensor& conditions) {
+  auto film = film2(torch::relu(film1(conditions)));                          // [M, F]
+  auto size_of = [](const torch::Tensor& t) { return std::vector<int64_t>{t.size(2), t.size(3)}; };
+  auto up = [&](const torch::Tensor& t, const torch::Tensor& like) {
+    return torch::upsample_nearest2d(t, size_of(like));
+  };
+  auto e0 = block(0, frames, film);                                           // [M,C1,H,W]
+  auto e1 = block(1, pool(e0), film);                                         // [M,C2,H1,W1]
+  auto e2 = block(2, pool(e1), film);                                         // [M,C3,H2,W2]
+  auto m = block(3, e2, film);                                                // [M,C3,H2,W2]
+  auto d1 = block(4, lateral1(up(m, e1)) + e1, film);                         // [M,C2,H1,W1]
+  auto d0 = block(5, lateral0(up(d1, e0)) + e0, film);                        // [M,C1,H,W]
+  return head(d0);                                                            // [M,1,H,W]
+}
+
+// FiLM conditions of each frame: the source and target attributes (repeated
+// for the window's T frames) and two global measures of the frame that a
+// local convolution cannot see: log(1 + total pressure) and the share of
+// loaded cells (x 10). centre [N*T,H,W], source/target [N,A] -> [N*T, 2A+2].
+static torch::Tensor frame_conditions(const torch::Tensor& centre, const torch::Tensor& source,
+                                      const torch::Tensor& target, int64_t t) {
+  auto total = torch::log1p(centre.clamp_min(0).sum({1, 2})).unsqueeze(1);           // [N*T,1]
+  auto loaded = (centre > 0).to(centre.scalar_type()).mean({1, 2}).unsqueeze(1) * 10;  // [N*T,1]
+  return torch::cat({torch::cat({source, target}, 1).repeat_interleave(t, 0), total, loaded}, 1);
+}
+
+// Frames of a window with their context as channels: x [N,T,H,W] ->
+// [N*T, 1 + 2 context, H, W], the window's first/last frame repeated.
+static torch::Tensor frames_with_context(const torch::Tensor& x, int context) {
+  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);
+  if (context == 0) return x.reshape({n * t, 1, h, w});
+  auto padded = torch::cat({x.narrow(1, 0, 1).expand({n, context, h, w}), x,
+                            x.narrow(1, t - 1, 1).expand({n, context, h, w})}, 1);  // [N,T+2c,H,W]
+  auto u = padded.unfold(1, 2 * context + 1, 1);                               // [N,T,H,W,K]
+  return u.permute({0, 1, 4, 2, 3}).reshape({n * t, 2 * context + 1, h, w});
+}
+
 torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const torch::Tensor& source,
                                                const torch::Tensor& target) {
   return torch::relu(forward_raw(x, source, target));  // [N,T,H,W] >= 0
@@ -83,13 +176,23 @@ torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const tor
 torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const torch::Tensor& source,
                                                    const torch::Tensor& target) {
   const auto& c = config_;
-  TORCH_CHECK(x.dim() == 4 && x.size(1) == c.window && x.size(2) == c.rows && x.size(3) == c.cols,
+  // Arch::frame is fully convolutional and per frame: any number of frames and
+  // any crop of the mat (training crops, whole sequences).
+  const bool any_size = c.arch == Arch::frame && x.dim() == 4;
+  TORCH_CHECK(any_size || (x.dim() == 4 && x.size(1) == c.window && x.size(2) == c.rows && x.size(3) == c.cols),
               "PressureTransferNet: expected input [N, ", c.window, ", ", c.rows, ", ", c.cols,
               "], found ", x.sizes());
   TORCH_CHECK(source.dim() == 2 && source.size(1) == kAttributes && target.sizes() == source.sizes() &&
                   source.size(0) == x.size(0),
               "PressureTransferNet: expected attributes [N, 3]");
   const std::int64_t n = x.size(0);
+  if (c.arch == Arch::frame) {
+    // Each frame on its own; the attributes repeated for the window's frames.
+    const auto t = x.size(1);
+    auto frames = frames_with_context(x, c.context);                         // [N*T,K,H,W]
+    auto correction = frame(frames, frame_conditions(frames.select(1, c.context), source, target, t));
+    return x + correction.view({n, t, x.size(2), x.size(3)});
+  }
   auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2), s3 = pooled_size(c, 3);
 
   // Encoder: [N,T,H,W] -> [N,C1,H1,W1] -> [N,C2,H2,W2] -> [N,C3,H3,W3]
@@ -114,7 +217,7 @@ torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const
   d = torch::max_unpool2d(d, i1, {s0[0], s0[1]});            // [N,C1,H,W]
   if (has_skips(c.arch)) d = torch::cat({d, e1}, 1);
   auto out = deconv1(d);                                             // [N,T,H,W] pre-activation
-  if (c.arch == Arch::residual) out = out + x;                       // a correction to the source
+  if (is_residual(c.arch)) out = out + x;                       // a correction to the source
   return out;
 }
 

@@ -16,7 +16,8 @@ Arch parse_arch(const std::string& text) {
   if (text == "faithful") return Arch::faithful;
   if (text == "skip") return Arch::skip;
   if (text == "residual") return Arch::residual;
-  throw Error("--arch: expected faithful, skip or residual, found \"" + text + "\"");
+  if (text == "frame") return Arch::frame;
+  throw Error("--arch: expected faithful, skip, residual or frame, found \"" + text + "\"");
 }
 
 Align parse_align(const std::string& text) {
@@ -31,6 +32,7 @@ const char* arch_name(Arch arch) {
   switch (arch) {
     case Arch::skip: return "skip";
     case Arch::residual: return "residual";
+    case Arch::frame: return "frame";
     default: return "faithful";
   }
 }
@@ -47,6 +49,8 @@ void validate(const ModelConfig& c) {
   for (int ch : c.channels) positive("channels", ch, 4096);
   positive("hidden", c.hidden, 1 << 16);
   positive("latent", c.latent, 1 << 16);
+  if (c.context < 0 || c.context > 16)
+    throw Error("model: context must be in 0-16, found " + std::to_string(c.context));
 }
 
 std::array<int, 2> pooled_size(const ModelConfig& c, int level) {
@@ -55,8 +59,41 @@ std::array<int, 2> pooled_size(const ModelConfig& c, int level) {
   return s;
 }
 
+namespace {
+// Arch::frame (model.hpp): six conv blocks (3x3, no bias; BatchNorm without
+// affine; FiLM gamma and beta per channel), laterals 1x1, head 3x3 -> 1, FiLM
+// MLP 2A -> hidden -> 2 x (sum of block widths). Per frame: parameters, and
+// multiply-adds with p0, p1, p2 cells at full, half and quarter resolution.
+struct FrameCounts {
+  std::int64_t parameters = 0;
+  double macs_per_frame = 0;
+};
+FrameCounts frame_counts(const ModelConfig& c) {
+  using I = std::int64_t;
+  const I k = 1 + 2 * I(c.context), c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
+  auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2);
+  const double p0 = double(s0[0]) * s0[1], p1 = double(s1[0]) * s1[1], p2 = double(s2[0]) * s2[1];
+  const I blocks[6][2] = {{k, c1}, {c1, c2}, {c2, c3}, {c3, c3}, {c2, c2}, {c1, c1}};
+  const double at[6] = {p0, p1, p2, p2, p1, p0};
+  FrameCounts f;
+  I film = 0;
+  for (int i = 0; i < 6; ++i) {
+    f.parameters += blocks[i][0] * blocks[i][1] * 9;
+    f.macs_per_frame += at[i] * 9.0 * double(blocks[i][0] * blocks[i][1]);
+    film += 2 * blocks[i][1];
+  }
+  f.parameters += c3 * c2 + c2 + c2 * c1 + c1 + c1 * 9 + 1;                 // laterals, head
+  f.macs_per_frame += p1 * double(c3 * c2) + p0 * double(c2 * c1) + p0 * 9.0 * double(c1);
+  const I conditions = 2 * kAttributes + kFrameGlobals;
+  f.parameters += conditions * I(c.hidden) + c.hidden + I(c.hidden) * film + film;  // FiLM MLP
+  f.macs_per_frame += double(conditions) * c.hidden + double(c.hidden) * double(film);
+  return f;
+}
+}  // namespace
+
 std::int64_t parameter_count(const ModelConfig& c) {
   using I = std::int64_t;
+  if (c.arch == Arch::frame) return frame_counts(c).parameters;
   const I t = c.window, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
   const I k = 9, skip = has_skips(c.arch) ? 2 : 1, a = kAttributes;
   auto s3 = pooled_size(c, 3);
@@ -75,6 +112,7 @@ std::int64_t parameter_count(const ModelConfig& c) {
 }
 
 double forward_flops(const ModelConfig& c) {
+  if (c.arch == Arch::frame) return 2 * frame_counts(c).macs_per_frame * c.window;
   const double t = c.window, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
   const double k = 9, skip = has_skips(c.arch) ? 2 : 1, a = kAttributes;
   auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2), s3 = pooled_size(c, 3);
@@ -95,7 +133,7 @@ std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
 json to_json(const ModelConfig& c) {
   return json{{"arch", arch_name(c.arch)}, {"align", align_name(c.align)}, {"window", c.window}, {"rows", c.rows},
               {"cols", c.cols}, {"channels", c.channels}, {"hidden", c.hidden},
-              {"latent", c.latent}, {"attributes", kAttributes},
+              {"latent", c.latent}, {"context", c.context}, {"attributes", kAttributes},
               {"output", "relu"}, {"pooling", "max 2x2 ceil, indices shared with the decoder"},
               {"parameters", parameter_count(c)}};
 }
@@ -122,11 +160,12 @@ T get(const json& j, const char* key, const std::string& where) {
 
 ModelConfig model_config_from_json(const json& j, const std::string& where) {
   ModelConfig c;
-  c.arch = Arch::faithful;
   const std::string arch = get<std::string>(j, "arch", where);
-  if (arch == "skip") c.arch = Arch::skip;
-  else if (arch == "residual") c.arch = Arch::residual;
-  else if (arch != "faithful") throw Error::in(where, "unknown architecture \"" + arch + "\"");
+  try {
+    c.arch = parse_arch(arch);
+  } catch (const Error&) {
+    throw Error::in(where, "unknown architecture \"" + arch + "\"");
+  }
   if (j.contains("align")) {
     const std::string align = get<std::string>(j, "align", where);
     if (align == "zoom") c.align = Align::zoom;
@@ -138,6 +177,7 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   c.channels = get<std::array<int, 3>>(j, "channels", where);
   c.hidden = get<int>(j, "hidden", where);
   c.latent = get<int>(j, "latent", where);
+  if (j.contains("context")) c.context = get<int>(j, "context", where);
   try {
     validate(c);
   } catch (const Error& e) {

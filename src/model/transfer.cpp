@@ -54,8 +54,10 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
   check_body_range(target, "target body");
 
   // Window starts every `stride` frames, plus one ending at the last frame.
+  // (A stride beyond the window would leave frames uncovered.)
+  const int stride = std::min(impl_->options.stride, k);
   std::vector<int> starts;
-  for (int s = 0; s + k <= t; s += impl_->options.stride) starts.push_back(s);
+  for (int s = 0; s + k <= t; s += stride) starts.push_back(s);
   if (starts.back() != t - k) starts.push_back(t - k);
 
   const float inv_scale = float(1.0 / d.norm.pressure_scale_kpa);
