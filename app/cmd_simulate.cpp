@@ -37,6 +37,7 @@ struct SimulateCli {
   int subsamples = 3;
   double crosstalk = -1, saturation_kpa = -1, noise_kpa = -1, threshold_kpa = -1, quantum_kpa = -1;
   bool ideal = false;
+  bool no_floor = false;
   bool force = false;
 };
 
@@ -52,6 +53,7 @@ void run(const SimulateCli& c) {
   o.seed = c.seed;
   o.threads = c.threads;
   o.force = c.force;
+  o.noise_floor = !c.no_floor;
   o.generator = std::string("ptnet ") + PTNET_VERSION + " simulate";
   SimOptions& s = o.sim;
   s.mat = MatSpec{c.rows, c.cols, c.pitch_m};
@@ -136,6 +138,8 @@ void setup(CLI::App& app) {
   cmd->add_option("--threshold-kpa", c->threshold_kpa, "Activation threshold (default 1)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--quantum-kpa", c->quantum_kpa, "ADC step, 0: off (default 0.1)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-floor", c->no_floor,
+                "Skip the second-seed copies of original-body sequences (/floor: the noise floor of evaluate)");
   cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");
   cmd->callback([c] { run(*c); });
 }

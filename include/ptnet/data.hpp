@@ -14,6 +14,9 @@
 //                     weight_kg, role
 //   /sequences/<name> float32 [T, rows, cols], chunked + compressed; attrs
 //                     body_id, motion_id, performer, category, take, source
+//   /floor/<name>     optional, float32 [T, rows, cols]: sequence <name>
+//                     simulated again with another sensor seed (only the
+//                     noise differs), for the noise floor of evaluations
 // HDF5 is not thread-safe here: use a writer or reader from one thread.
 #pragma once
 
@@ -45,6 +48,7 @@ struct SequenceMeta {
   int take = 1;           // 1 = seen, 2 = unseen in the paper's protocol
   std::string source;     // BVH path or "procedural:..."
   int frames = 0;         // filled by Dataset::open
+  bool floor = false;     // filled by Dataset::open: /floor/<name> exists
 };
 
 class DatasetWriter {
@@ -57,6 +61,9 @@ class DatasetWriter {
 
   // Checks the shape against the mat and the body_id against the bodies.
   void add(const SequenceMeta& meta, const PressureSequence& sequence);
+  // /floor/<name>: the sequence `name` (added before, same shape) simulated
+  // again with another sensor seed.
+  void add_floor(const std::string& name, const PressureSequence& sequence);
   void commit();
 
  private:
@@ -82,6 +89,8 @@ class Dataset {
   // Frames [start, start + count) of a sequence into out[count, rows, cols].
   void read(const std::string& name, int start, int count, float* out) const;
   PressureSequence read(const std::string& name) const;
+  // /floor/<name> (sequence(name).floor must be true; throws Error otherwise).
+  PressureSequence read_floor(const std::string& name) const;
 
  private:
   Dataset();

@@ -69,7 +69,7 @@ PressureSequence body_scale_baseline(const PressureSequence& source, const BodyS
 
 // One evaluated (source -> target) pair on one motion, for one method.
 struct EvalRow {
-  std::string method;    // "model", "copy", "weight_ratio", "body_scale"
+  std::string method;    // "model", "copy", "weight_ratio", "body_scale", "floor"
   std::string motion_id;
   std::string category;  // walking | rom | freestyle | acting
   int take = 1;          // 1 = seen motion, 2 = unseen
@@ -82,8 +82,14 @@ struct EvalRow {
 // Markdown table in the layout of the paper's Table 2: rows per category
 // (seen, then unseen) and their average; columns RMSE and binary R^2 of each
 // method, then CoP error, force error and IoU of the model. Category and
-// average values are means over rows (pairs) of that group.
+// average values are means over rows (pairs) of that group. The noise floor
+// ("floor") always has its columns: "n/a" where no row measured it, with a
+// line under the table saying why.
 std::string format_table(const std::vector<EvalRow>& rows);
+// The line format_table prints under a table without floor rows.
+inline constexpr const char* kNoFloorNote =
+    "Noise floor n/a: the dataset holds no second-seed copies of its test sequences (/floor); "
+    "re-simulate it with `ptnet simulate` or `ptnet demo` (without --no-floor) to measure it.";
 
 // metrics.csv: one row per pair, sequence and method; read back exactly.
 std::string format_metrics_csv(const std::vector<EvalRow>& rows);
@@ -135,8 +141,11 @@ PairData load_pair(const Dataset& dataset, const TestPair& pair);
 std::vector<TestPair> test_pairs(const Dataset& dataset);
 
 // Evaluates every test pair with the model and the three baselines: four
-// EvalRows per pair (methods "model", "copy", "weight_ratio", "body_scale"). Throws Error if
-// the dataset has no test pairs (it needs >= 2 original bodies).
+// EvalRows per pair (methods "model", "copy", "weight_ratio", "body_scale"),
+// and a fifth, "floor", when the target sequence has a noise-floor copy
+// (/floor/<name>: the truth simulated again with another sensor seed,
+// compared with the truth; simulate_dataset writes them for original bodies).
+// Throws Error if the dataset has no test pairs (it needs >= 2 original bodies).
 std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& model,
                                     const EvaluateOptions& options);
 

@@ -149,6 +149,11 @@ Pose canonical_rest_offsets(double height_cm);
 // or a height outside 50-250 cm.
 Motion retarget(const Motion& motion, double height_cm);
 
+// The factor retarget(motion, height_cm) scales the root's horizontal path by
+// (about frame 0's pelvis): the canonical leg length of height_cm over the
+// motion's mean leg length (hip -> knee -> ankle). Throws Error as retarget.
+double retarget_scale(const Motion& motion, double height_cm);
+
 // The motion as a BVH on the canonical skeleton (joints named as
 // joint_name(), y-up, centimetres, root Xposition Yposition Zposition then
 // ZXY rotation channels; End Sites: head top, toe tips, hands). Rotations

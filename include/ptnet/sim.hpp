@@ -6,12 +6,24 @@
 //   ptnet::SimOptions opt;                       // 80 x 28 x 0.02 m, fixed mat
 //   ptnet::PressureSequence seq = ptnet::simulate(m, body, opt);   // [T, 80, 28] kPa
 //
+// Several bodies of one motion: place the source motion once, so that every
+// copy lies along the same axis (simulate_dataset does this):
+//   ptnet::Motion src = ptnet::load_motion("walk.bvh", {});
+//   ptnet::MotionPlacement place = ptnet::place_motion(src, opt);
+//   for (double h : {150.0, 190.0})
+//     seqs.push_back(ptnet::simulate(ptnet::retarget(src, h), body_of(h), opt,
+//                                    place.scaled(ptnet::retarget_scale(src, h))));
+//
 // Per frame (../shared/design.md, "Pressure simulation"):
-//  1. placement: the whole sequence is centred on the mat and its walking
-//     direction (principal axis of the pelvis path; the mean facing direction
-//     if it barely moves) laid along the mat's long axis, pointing to row 0
-//     (+x end); the body's left is col 0 (see ptnet/pressure.hpp). `follow`
-//     re-centres the mat on the smoothed pelvis path each frame.
+//  1. placement (MotionPlacement below): the whole sequence is centred on the
+//     mat and its walking direction (principal axis of the pelvis path; the
+//     mean facing direction if it barely moves) laid along the mat's long
+//     axis, pointing to row 0 (+x end); the body's left is col 0 (see
+//     ptnet/pressure.hpp). `follow` re-centres the mat on the smoothed pelvis
+//     path each frame. The placement is decided once per source motion and
+//     scaled to each retargeted copy, so that one motion lies the same way on
+//     every body and the copies differ by a zoom about the mat centre by the
+//     height ratio (zoom_about_centre).
 //     Rigs whose toe joint is not at the metatarsal heads (the ankle -> toe
 //     bone of a planted foot flatter or steeper than the canonical 20.8
 //     degrees) have their feet pitched back to the canonical sole.
@@ -41,6 +53,7 @@
 // Same options (seed included): same bytes. Another seed changes only the noise.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -83,9 +96,31 @@ struct SimOptions {
 // A noiseless sensor (the physics only): for tests and references.
 SensorModel ideal_sensor();
 
+// Where the mat lies under a motion: world -> mat coordinates in frame t,
+// X = axis . (p - centre[t]) (towards row 0), Y = left . (p - centre[t])
+// (towards col 0); centre is constant for Placement::fixed.
+struct MotionPlacement {
+  Eigen::Vector2d axis{1, 0}, left{0, 1};
+  Eigen::Vector2d anchor{0, 0};          // frame 0's pelvis (x, y): retarget scales the root path about it
+  std::vector<Eigen::Vector2d> centre;   // [T] world (x, y), m
+  // The placement of a copy whose horizontal root path is this motion's
+  // scaled by `ratio` about `anchor` (a retargeted copy: ratio =
+  // retarget_scale(source, height_cm)): same axis, centres scaled.
+  MotionPlacement scaled(double ratio) const;
+};
+
+// The placement of `motion` for options.placement (fixed: the pelvis path's
+// bounding box centred; follow: its Gaussian-smoothed path, sigma
+// options.follow_smoothing_s). Throws Error for an empty motion.
+MotionPlacement place_motion(const Motion& motion, const SimOptions& options);
+// The placement of source's copy retargeted onto a body of height_cm:
+// place_motion(source, options).scaled(retarget_scale(source, height_cm)).
+MotionPlacement place_copy(const Motion& source, double height_cm, const SimOptions& options);
+
 // Simulates `motion` (already retargeted onto `body`: canonical joints, world,
 // m, ground z = 0) on the mat: [T = motion.size(), rows, cols] kPa at
-// motion.fps. Throws Error for an empty motion or impossible options.
+// motion.fps, placed by place_motion(motion, options). Throws Error for an
+// empty motion or impossible options.
 PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options);
 
 // What simulate() attributes to each foot in one frame (before the sensor model).
@@ -108,6 +143,12 @@ struct FrameTrace {
 PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
                           std::vector<FrameTrace>* trace);
 
+// simulate() with a given placement (place_copy: the source motion's,
+// scaled), used whatever options.placement says; trace as above. Throws Error
+// if placement.centre does not have one entry per frame.
+PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
+                          const MotionPlacement& placement, std::vector<FrameTrace>* trace = nullptr);
+
 // Total vertical load (N) per frame, F = m (g + a_z) clamped at 0 (before the
 // contact test): [T], N.
 std::vector<double> vertical_load(const Motion& motion, const Body& body, double com_filter_hz);
@@ -117,6 +158,7 @@ struct SimJob {
   const Motion* motion = nullptr;  // on this body
   const Body* body = nullptr;
   std::uint64_t seed = 0;          // replaces options.seed for this job
+  const MotionPlacement* placement = nullptr;  // null: place_motion(*motion, options)
 };
 
 // Runs every job on `threads` threads (0: hardware concurrency); result i is
@@ -128,5 +170,8 @@ std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
 
 // A per-sequence seed from a run seed and the sequence name (FNV-1a + mix).
 std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name);
+// The sensor seed of a sequence's noise-floor copy: sequence_seed(seed,
+// name + "/floor") (no sequence name holds '/', so it is no other's seed).
+std::uint64_t floor_seed(std::uint64_t seed, const std::string& name);
 
 }  // namespace ptnet

@@ -17,6 +17,12 @@
 // motions and pressure sequences, whatever the size of the run. Sequence i is
 // named "<motion_id>__<body_id>" and seeded with sequence_seed(seed, name):
 // the file is byte-identical for any thread count or chunk size.
+// Each clip is placed on the mat once, from the source motion (place_motion),
+// and every body's copy gets that placement scaled by retarget_scale, so the
+// copies of one motion differ by body scale, not by where they lie.
+// Sequences on bodies with role "original" (the test bodies) are also
+// simulated with a second sensor seed, floor_seed(seed, name), into
+// /floor/<name>: the noise floor that `ptnet evaluate` reports.
 #pragma once
 
 #include <cstdint>
@@ -96,6 +102,7 @@ struct SimulateDatasetOptions {
   int threads = 0;                // 0: hardware concurrency
   int chunk_jobs = 0;             // jobs per chunk; 0: 8 x threads (at least 16)
   bool force = false;             // overwrite an existing output
+  bool noise_floor = true;        // /floor/<name> for sequences on original bodies
   std::string generator = "ptnet simulate";
   std::string config_json;        // "" : built from the options
   // Called as work completes: (phase, done, total); phase "load" for clips,

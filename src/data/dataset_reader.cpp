@@ -87,7 +87,9 @@ struct Dataset::Impl {
   void read_root();
   void read_bodies();
   void read_sequences();
+  void read_floors();
   const H5::DataSet& dataset(const std::string& name) const;
+  void read_block(const H5::DataSet& ds, const std::string& what, int start, int count, float* out) const;
 };
 
 void Dataset::Impl::read_root() {
@@ -203,6 +205,35 @@ void Dataset::Impl::read_sequences() {
   }
 }
 
+// /floor/<name>: optional; each must be float32 of its sequence's shape.
+void Dataset::Impl::read_floors() {
+  if (!file.nameExists("floor")) return;
+  if (file.childObjType("floor") != H5O_TYPE_GROUP) throw Error::in(path, "/floor is not a group");
+  H5::Group group = file.openGroup("floor");
+  const hsize_t n = group.getNumObjs();
+  for (hsize_t i = 0; i < n; ++i) {
+    const std::string name = group.getObjnameByIdx(i);
+    const std::string where = "/floor/" + name;
+    const auto it = sequence_index.find(name);
+    if (it == sequence_index.end()) throw Error::in(path, where + ": no sequence '" + name + "'");
+    if (group.childObjType(name) != H5O_TYPE_DATASET) throw Error::in(path, where + " is not a dataset");
+    H5::DataSet ds = group.openDataSet(name);
+    H5::DataSpace space = ds.getSpace();
+    const int rank = space.getSimpleExtentNdims();
+    std::vector<hsize_t> dims(std::max(rank, 0));
+    space.getSimpleExtentDims(dims.data());
+    SequenceMeta& m = sequences[it->second];
+    if (rank != 3 || dims[0] != hsize_t(m.frames) || dims[1] != hsize_t(info.mat.rows) ||
+        dims[2] != hsize_t(info.mat.cols))
+      throw Error::in(path, where + " has shape " + shape_text(dims) + ", expected that of its sequence [" +
+                                std::to_string(m.frames) + ", " + std::to_string(info.mat.rows) + ", " +
+                                std::to_string(info.mat.cols) + "]");
+    if (ds.getTypeClass() != H5T_FLOAT || ds.getFloatType().getSize() != 4)
+      throw Error::in(path, where + " is not float32");
+    m.floor = true;
+  }
+}
+
 const H5::DataSet& Dataset::Impl::dataset(const std::string& name) const {
   for (size_t i = 0; i < open_sets.size(); ++i) {
     if (open_sets[i].first == name) {
@@ -251,6 +282,7 @@ Dataset Dataset::open(const std::string& path) {
     d.impl_->read_root();
     d.impl_->read_bodies();
     d.impl_->read_sequences();
+    d.impl_->read_floors();
   } catch (const H5::Exception& e) {
     std::string why = h5::error_stack_text();
     throw Error::in(path, "damaged HDF5 file: " + (why.empty() ? e.getFuncName() + ": " + e.getDetailMsg() : why));
@@ -287,25 +319,29 @@ void Dataset::read(const std::string& name, int start, int count, float* out) co
                                      std::to_string(long(start) + count) + ") outside its " +
                                      std::to_string(m.frames) + " frames");
   if (count == 0) return;
-  const MatSpec& mat = impl_->info.mat;
+  const std::string what = "sequence '" + name + "'";
   try {
-    const H5::DataSet& ds = impl_->dataset(name);
-    H5::DataSpace fspace = ds.getSpace();
-    hsize_t offset[3] = {hsize_t(start), 0, 0};
-    hsize_t dims[3] = {hsize_t(count), hsize_t(mat.rows), hsize_t(mat.cols)};
-    fspace.selectHyperslab(H5S_SELECT_SET, dims, offset);
-    H5::DataSpace mspace(3, dims);
-    ds.read(out, H5::PredType::NATIVE_FLOAT, mspace, fspace);
+    impl_->read_block(impl_->dataset(name), what, start, count, out);
   } catch (const H5::Exception&) {
-    throw Error::in(impl_->path, "sequence '" + name + "': cannot read frames (damaged file?): " +
-                                     h5::error_stack_text());
+    throw Error::in(impl_->path, what + ": cannot read frames (damaged file?): " + h5::error_stack_text());
   }
+}
+
+// out[count, rows, cols] <- frames [start, start + count) of ds, checked finite.
+void Dataset::Impl::read_block(const H5::DataSet& ds, const std::string& what, int start, int count,
+                               float* out) const {
+  const MatSpec& mat = info.mat;
+  H5::DataSpace fspace = ds.getSpace();
+  hsize_t offset[3] = {hsize_t(start), 0, 0};
+  hsize_t dims[3] = {hsize_t(count), hsize_t(mat.rows), hsize_t(mat.cols)};
+  fspace.selectHyperslab(H5S_SELECT_SET, dims, offset);
+  H5::DataSpace mspace(3, dims);
+  ds.read(out, H5::PredType::NATIVE_FLOAT, mspace, fspace);
   const size_t n = size_t(count) * mat.cells();
   for (size_t i = 0; i < n; ++i) {
     if (!std::isfinite(out[i])) {
       size_t t = start + i / mat.cells();
-      throw Error::in(impl_->path, "sequence '" + name + "': non-finite value (NaN or Inf) in frame " +
-                                       std::to_string(t));
+      throw Error::in(path, what + ": non-finite value (NaN or Inf) in frame " + std::to_string(t));
     }
   }
 }
@@ -314,6 +350,20 @@ PressureSequence Dataset::read(const std::string& name) const {
   const SequenceMeta& m = sequence(name);
   PressureSequence seq(impl_->info.mat, m.frames, impl_->info.fps);
   read(name, 0, m.frames, seq.kpa.data());
+  return seq;
+}
+
+PressureSequence Dataset::read_floor(const std::string& name) const {
+  const SequenceMeta& m = sequence(name);
+  if (!m.floor)
+    throw Error::in(impl_->path, "sequence '" + name + "' has no noise-floor copy (/floor/" + name + ")");
+  PressureSequence seq(impl_->info.mat, m.frames, impl_->info.fps);
+  const std::string what = "/floor/" + name;
+  try {
+    impl_->read_block(impl_->file.openDataSet(what), what, 0, m.frames, seq.kpa.data());
+  } catch (const H5::Exception&) {
+    throw Error::in(impl_->path, what + ": cannot read frames (damaged file?): " + h5::error_stack_text());
+  }
   return seq;
 }
 

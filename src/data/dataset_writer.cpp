@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -66,15 +67,55 @@ void write_bodies(H5::H5File& file, const std::vector<BodySpec>& bodies) {
   H5::DataSet ds = file.createDataSet("bodies", type, space, plist);
   if (!bodies.empty()) ds.write(buffer.data(), type);
 }
+
+// A sequence's mat, fps, frame count and values, checked before writing.
+void check_frames(const std::string& path, const std::string& where, const DatasetInfo& info,
+                  const PressureSequence& seq) {
+  const MatSpec& mat = info.mat;
+  if (!(seq.mat == mat))
+    throw Error::in(path, where + ": mat " + std::to_string(seq.mat.rows) + " x " +
+                              std::to_string(seq.mat.cols) + " differs from the dataset's " +
+                              std::to_string(mat.rows) + " x " + std::to_string(mat.cols));
+  if (std::abs(seq.fps - info.fps) > 1e-9 * info.fps)
+    throw Error::in(path, where + ": fps " + std::to_string(seq.fps) + " differs from the dataset's " +
+                              std::to_string(info.fps));
+  const int frames = seq.frames();
+  if (frames <= 0 || seq.kpa.size() != size_t(frames) * mat.cells())
+    throw Error::in(path, where + ": has no frames");
+  for (size_t i = 0; i < seq.kpa.size(); ++i) {
+    if (!std::isfinite(seq.kpa[i])) {
+      size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
+      throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
+                                std::to_string(r) + " col " + std::to_string(c));
+    }
+  }
+}
+
+// float32 [T, rows, cols] in chunks of kChunkFrames frames, shuffle + deflate.
+H5::DataSet write_frames(H5::Group& group, const std::string& name, const PressureSequence& seq) {
+  const int frames = seq.frames();
+  hsize_t dims[3] = {hsize_t(frames), hsize_t(seq.mat.rows), hsize_t(seq.mat.cols)};
+  hsize_t chunk[3] = {hsize_t(std::min(frames, kChunkFrames)), dims[1], dims[2]};
+  H5::DataSpace space(3, dims);
+  H5::DSetCreatPropList plist;
+  H5Pset_obj_track_times(plist.getId(), false);
+  plist.setChunk(3, chunk);
+  plist.setShuffle();
+  plist.setDeflate(kDeflateLevel);
+  H5::DataSet ds = group.createDataSet(name, H5::PredType::IEEE_F32LE, space, plist);
+  ds.write(seq.kpa.data(), H5::PredType::NATIVE_FLOAT);
+  return ds;
+}
 }  // namespace
 
 struct DatasetWriter::Impl {
   AtomicFile out;  // declared first: destroyed last, after the file is closed
   DatasetInfo info;
   std::set<std::string> body_ids;
-  std::set<std::string> names;
+  std::map<std::string, int> frames;  // sequence name -> frames
+  std::set<std::string> floors;
   H5::H5File file;
-  H5::Group sequences;
+  H5::Group sequences, floor;
   bool committed = false;
 
   Impl(const std::string& path, bool force) : out(path, force) {}
@@ -118,6 +159,7 @@ DatasetWriter::~DatasetWriter() {
   if (!impl_) return;
   try {
     impl_->sequences.close();
+    impl_->floor.close();
     impl_->file.close();
   } catch (...) {
   }
@@ -130,39 +172,12 @@ void DatasetWriter::add(const SequenceMeta& meta, const PressureSequence& seq) {
   if (meta.name.empty() || meta.name.find('/') != std::string::npos || meta.name == "." ||
       meta.name == "..")
     throw Error::in(path, "invalid sequence name '" + meta.name + "' (empty or contains '/')");
-  if (impl_->names.count(meta.name)) throw Error::in(path, where + " added twice");
+  if (impl_->frames.count(meta.name)) throw Error::in(path, where + " added twice");
   if (!impl_->body_ids.count(meta.body_id))
     throw Error::in(path, where + ": body_id '" + meta.body_id + "' not in the bodies table");
-  const MatSpec& mat = impl_->info.mat;
-  if (!(seq.mat == mat))
-    throw Error::in(path, where + ": mat " + std::to_string(seq.mat.rows) + " x " +
-                              std::to_string(seq.mat.cols) + " differs from the dataset's " +
-                              std::to_string(mat.rows) + " x " + std::to_string(mat.cols));
-  if (std::abs(seq.fps - impl_->info.fps) > 1e-9 * impl_->info.fps)
-    throw Error::in(path, where + ": fps " + std::to_string(seq.fps) + " differs from the dataset's " +
-                              std::to_string(impl_->info.fps));
-  const int frames = seq.frames();
-  if (frames <= 0 || seq.kpa.size() != size_t(frames) * mat.cells())
-    throw Error::in(path, where + ": has no frames");
-  for (size_t i = 0; i < seq.kpa.size(); ++i) {
-    if (!std::isfinite(seq.kpa[i])) {
-      size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
-      throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
-                                std::to_string(r) + " col " + std::to_string(c));
-    }
-  }
+  check_frames(path, where, impl_->info, seq);
   try {
-    hsize_t dims[3] = {hsize_t(frames), hsize_t(mat.rows), hsize_t(mat.cols)};
-    hsize_t chunk[3] = {hsize_t(std::min(frames, kChunkFrames)), dims[1], dims[2]};
-    H5::DataSpace space(3, dims);
-    H5::DSetCreatPropList plist;
-    H5Pset_obj_track_times(plist.getId(), false);
-    plist.setChunk(3, chunk);
-    plist.setShuffle();
-    plist.setDeflate(kDeflateLevel);
-    H5::DataSet ds =
-        impl_->sequences.createDataSet(meta.name, H5::PredType::IEEE_F32LE, space, plist);
-    ds.write(seq.kpa.data(), H5::PredType::NATIVE_FLOAT);
+    H5::DataSet ds = write_frames(impl_->sequences, meta.name, seq);
     h5::write_attr(ds, "body_id", meta.body_id);
     h5::write_attr(ds, "motion_id", meta.motion_id);
     h5::write_attr(ds, "performer", meta.performer);
@@ -172,7 +187,27 @@ void DatasetWriter::add(const SequenceMeta& meta, const PressureSequence& seq) {
   } catch (const H5::Exception&) {
     throw Error::in(path, where + ": cannot write: " + h5::error_stack_text());
   }
-  impl_->names.insert(meta.name);
+  impl_->frames[meta.name] = seq.frames();
+}
+
+void DatasetWriter::add_floor(const std::string& name, const PressureSequence& seq) {
+  const std::string& path = impl_->path();
+  if (impl_->committed) throw Error::in(path, "add_floor() after commit()");
+  const std::string where = "floor of sequence '" + name + "'";
+  const auto it = impl_->frames.find(name);
+  if (it == impl_->frames.end()) throw Error::in(path, where + ": no such sequence (add it first)");
+  if (impl_->floors.count(name)) throw Error::in(path, where + " added twice");
+  check_frames(path, where, impl_->info, seq);
+  if (seq.frames() != it->second)
+    throw Error::in(path, where + ": " + std::to_string(seq.frames()) + " frames, the sequence has " +
+                              std::to_string(it->second));
+  try {
+    if (impl_->floors.empty()) impl_->floor = h5::create_group(impl_->file, "floor");
+    write_frames(impl_->floor, name, seq);
+  } catch (const H5::Exception&) {
+    throw Error::in(path, where + ": cannot write: " + h5::error_stack_text());
+  }
+  impl_->floors.insert(name);
 }
 
 void DatasetWriter::commit() {
@@ -180,6 +215,7 @@ void DatasetWriter::commit() {
   if (impl_->committed) return;
   try {
     impl_->sequences.close();
+    impl_->floor.close();
     impl_->file.close();
   } catch (const H5::Exception&) {
     throw Error::in(path, "cannot finish HDF5 file (disk full?): " + h5::error_stack_text());

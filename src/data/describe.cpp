@@ -31,7 +31,8 @@ std::string describe_dataset(const Dataset& d, bool json) {
   const DatasetInfo& info = d.info();
   std::error_code ec;
   const auto file_bytes = std::filesystem::file_size(d.path(), ec);
-  long long frames = 0;
+  long long frames = 0, floor_frames = 0;
+  int floors = 0;
   std::map<std::string, int> per_category, per_take;
   std::map<std::string, long long> frames_per_category;
   std::map<std::string, int> per_body;
@@ -43,8 +44,10 @@ std::string describe_dataset(const Dataset& d, bool json) {
     per_take[std::to_string(s.take)]++;
     per_body[s.body_id]++;
     motions.insert(s.motion_id);
+    if (s.floor) ++floors, floor_frames += s.frames;
   }
-  const double raw_bytes = double(frames) * info.mat.cells() * sizeof(float);
+  // Everything stored: the sequences and their noise-floor copies.
+  const double raw_bytes = double(frames + floor_frames) * info.mat.cells() * sizeof(float);
   int females = 0, males = 0;
   std::map<std::string, int> per_role;
   for (const auto& b : d.bodies()) {
@@ -66,6 +69,7 @@ std::string describe_dataset(const Dataset& d, bool json) {
     j["frames"] = frames;
     j["seconds"] = frames / info.fps;
     j["motions"] = motions.size();
+    j["floor_copies"] = floors;
     j["categories"] = nlohmann::ordered_json::object();
     for (const auto& [c, n] : per_category)
       j["categories"][c] = {{"sequences", n}, {"frames", frames_per_category[c]}};
@@ -114,6 +118,8 @@ std::string describe_dataset(const Dataset& d, bool json) {
     }
     o << "\n";
   }
+  if (floors > 0)
+    o << "  floor      " << floors << " noise-floor copies (/floor: second sensor seed, for ptnet evaluate)\n";
   o << "  file       " << (ec ? std::string("?") : human_bytes(double(file_bytes)));
   if (!ec && file_bytes > 0 && raw_bytes > 0)
     o << " (raw float32 " << human_bytes(raw_bytes) << ", compression "

@@ -29,6 +29,7 @@ std::string default_config(const std::vector<ClipSource>& clips, const std::vect
   j["compliance_m"] = s.compliance_m;
   j["subsamples"] = s.subsamples;
   j["com_filter_hz"] = s.com_filter_hz;
+  j["noise_floor"] = o.noise_floor;
   j["sensor"] = {{"crosstalk", s.sensor.crosstalk},       {"saturation_kpa", s.sensor.saturation_kpa},
                  {"noise_sd_kpa", s.sensor.noise_sd_kpa}, {"threshold_kpa", s.sensor.threshold_kpa},
                  {"quantum_kpa", s.sensor.quantum_kpa}};
@@ -54,11 +55,15 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
 
   // 1. Every clip, loaded once: a bad file fails the run before any simulation.
   const int nc = int(clips.size());
+  //    Each clip's placement on the mat is decided here, once, from the
+  //    source motion; every body's copy gets it scaled (MotionPlacement).
   std::vector<Motion> motions(clips.size());
+  std::vector<MotionPlacement> places(clips.size());
   std::mutex progress_mutex;
   int loaded = 0;
   parallel_for(nc, threads, [&](int i) {
     motions[std::size_t(i)] = load_clip(clips[std::size_t(i)], options.fps);
+    places[std::size_t(i)] = place_motion(motions[std::size_t(i)], options.sim);
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       options.progress("load", ++loaded, nc);
@@ -87,27 +92,44 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
   info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
   DatasetWriter writer(out_path, info, bodies, options.force);
 
-  // 2. Chunks of jobs: retarget, simulate, write.
+  // 2. Chunks of jobs: retarget, simulate, write. Sequences on original
+  //    bodies are simulated a second time with another sensor seed (the
+  //    noise floor, /floor/<name>); progress counts only the sequences.
   const int nb = int(bodies.size()), total = int(metas.size());
   const int chunk = options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads);
+  const auto with_floor = [&](int j) { return options.noise_floor && bodies[std::size_t(j % nb)].role == "original"; };
   int done = 0;
   for (int j0 = 0; j0 < total; j0 += chunk) {
     const int j1 = std::min(total, j0 + chunk);
     std::vector<Motion> retargeted(std::size_t(j1 - j0));
+    std::vector<MotionPlacement> placed(std::size_t(j1 - j0));
     parallel_for(j1 - j0, threads, [&](int k) {
       const int j = j0 + k;
-      retargeted[std::size_t(k)] = retarget(motions[std::size_t(j / nb)], bodies[std::size_t(j % nb)].height_cm);
+      const Motion& source = motions[std::size_t(j / nb)];
+      const double height = bodies[std::size_t(j % nb)].height_cm;
+      retargeted[std::size_t(k)] = retarget(source, height);
+      placed[std::size_t(k)] = places[std::size_t(j / nb)].scaled(retarget_scale(source, height));
     });
     std::vector<SimJob> jobs;
+    std::vector<int> floor_job(std::size_t(j1 - j0), -1);  // index of sequence j's floor job
     for (int j = j0; j < j1; ++j)
       jobs.push_back({&retargeted[std::size_t(j - j0)], &built[std::size_t(j % nb)],
-                      sequence_seed(options.seed, metas[std::size_t(j)].name)});
-    const std::vector<PressureSequence> seqs = simulate_many(jobs, options.sim, threads, [&](int d, int) {
-      if (options.progress) options.progress("simulate", done + d, total);
+                      sequence_seed(options.seed, metas[std::size_t(j)].name), &placed[std::size_t(j - j0)]});
+    for (int j = j0; j < j1; ++j)
+      if (with_floor(j)) {
+        floor_job[std::size_t(j - j0)] = int(jobs.size());
+        SimJob f = jobs[std::size_t(j - j0)];
+        f.seed = floor_seed(options.seed, metas[std::size_t(j)].name);
+        jobs.push_back(f);
+      }
+    const std::vector<PressureSequence> seqs = simulate_many(jobs, options.sim, threads, [&](int d, int n) {
+      if (options.progress) options.progress("simulate", done + d * (j1 - j0) / n, total);
     });
     for (int j = j0; j < j1; ++j) {
       const PressureSequence& s = seqs[std::size_t(j - j0)];
       writer.add(metas[std::size_t(j)], s);
+      if (floor_job[std::size_t(j - j0)] >= 0)
+        writer.add_floor(metas[std::size_t(j)].name, seqs[std::size_t(floor_job[std::size_t(j - j0)])]);
       summary.frames += s.frames();
     }
     done = j1;

@@ -46,7 +46,7 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
                     "no test pairs: evaluation needs the same motion on at least two bodies "
                     "with role 'original'");
   std::vector<EvalRow> rows;
-  rows.reserve(pairs.size() * 4);
+  rows.reserve(pairs.size() * 5);
   int done = 0;
   for (const auto& pair : pairs) {
     const PairData data = load_pair(dataset, pair);
@@ -56,11 +56,17 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
     const BodySpec& dst_body = data.target_body;
     const int frames = truth.frames();
 
-    const std::pair<std::string, PressureSequence> predictions[] = {
-        {"model", model(source, src_body, dst_body)},
-        {"copy", copy_baseline(source)},
-        {"weight_ratio", weight_ratio_baseline(source, src_body.weight_kg, dst_body.weight_kg)},
-        {"body_scale", body_scale_baseline(source, src_body, dst_body)}};
+    std::vector<std::pair<std::string, PressureSequence>> predictions;
+    predictions.emplace_back("model", model(source, src_body, dst_body));
+    predictions.emplace_back("copy", copy_baseline(source));
+    predictions.emplace_back("weight_ratio", weight_ratio_baseline(source, src_body.weight_kg, dst_body.weight_kg));
+    predictions.emplace_back("body_scale", body_scale_baseline(source, src_body, dst_body));
+    if (dataset.sequence(pair.target_sequence).floor) {
+      // The noise floor: the truth simulated again with another sensor seed.
+      PressureSequence floor = dataset.read_floor(pair.target_sequence);
+      floor.kpa.resize(truth.kpa.size());
+      predictions.emplace_back("floor", std::move(floor));
+    }
     for (const auto& [method, predicted] : predictions) {
       EvalRow r;
       r.method = method;

@@ -79,7 +79,9 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
   nlohmann::json j;
   j["dataset"] = dataset.path();
   j["threshold_kpa"] = options.threshold_kpa;
-  j["pairs"] = rows.size() / 3;
+  j["pairs"] = std::count_if(rows.begin(), rows.end(), [](const EvalRow& r) { return r.method == "model"; });
+  const bool floor = std::any_of(rows.begin(), rows.end(), [](const EvalRow& r) { return r.method == "floor"; });
+  j["noise_floor"] = floor ? "groups.*.*.floor: the truth simulated again with another sensor seed" : kNoFloorNote;
   j["definitions"] = "see include/ptnet/eval.hpp and docs/results.md";
   j["paper_table2"] = paper_table();
   for (const auto& g : summarise(rows)) {

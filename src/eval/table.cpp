@@ -12,7 +12,7 @@ namespace ptnet {
 namespace {
 
 const std::vector<std::string> kCategoryOrder{"walking", "rom", "freestyle", "acting"};
-const std::vector<std::string> kMethodOrder{"model", "copy", "weight_ratio", "body_scale"};
+const std::vector<std::string> kMethodOrder{"model", "copy", "weight_ratio", "body_scale", "floor"};
 
 void accumulate(SequenceMetrics& sum, const SequenceMetrics& m) {
   sum.rmse_kpa += m.rmse_kpa;
@@ -86,9 +86,10 @@ std::vector<GroupSummary> summarise(const std::vector<EvalRow>& rows) {
 
 std::string format_table(const std::vector<EvalRow>& rows) {
   const auto groups = summarise(rows);
-  std::vector<std::string> methods;
+  std::vector<std::string> methods{"floor"};  // always: "n/a" when not measured
   for (const auto& g : groups) methods.push_back(g.method);
   methods = ordered(methods, kMethodOrder);
+  const bool has_floor = std::any_of(rows.begin(), rows.end(), [](const EvalRow& r) { return r.method == "floor"; });
   auto find = [&](const std::string& method, const std::string& group, bool seen)
       -> const GroupSummary* {
     for (const auto& g : groups)
@@ -121,8 +122,9 @@ std::string format_table(const std::vector<EvalRow>& rows) {
           << (first ? first->rows : 0) << " |";
       for (const auto& m : methods) {
         const GroupSummary* g = find(m, cat, seen);
-        out << " " << (g ? fixed(g->mean.rmse_kpa, 2) : "-") << " | "
-            << (g ? fixed(g->mean.binary_r2, 3) : "-") << " |";
+        const char* none = m == "floor" && !has_floor ? "n/a" : "-";
+        out << " " << (g ? fixed(g->mean.rmse_kpa, m == "floor" ? 3 : 2) : none) << " | "
+            << (g ? fixed(g->mean.binary_r2, 3) : none) << " |";
       }
       if (has_model) {
         const GroupSummary* g = find("model", cat, seen);
@@ -133,6 +135,7 @@ std::string format_table(const std::vector<EvalRow>& rows) {
       out << "\n";
     }
   }
+  if (!has_floor) out << "\n" << kNoFloorNote << "\n";
   return out.str();
 }
 

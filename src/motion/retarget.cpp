@@ -37,17 +37,21 @@ double leg_length(const Pose& p) {
 
 }  // namespace
 
-Motion retarget(const Motion& motion, double height_cm) {
+double retarget_scale(const Motion& motion, double height_cm) {
   if (motion.frames.empty()) throw Error(motion.name + ": cannot retarget a motion with no frames");
   if (!(height_cm >= 50 && height_cm <= 250))
     throw Error(motion.name + ": expected a target height in [50, 250] cm, found " + std::to_string(height_cm));
   const Pose o = canonical_rest_offsets(height_cm);
-
   double source_leg = 0;
   for (const Pose& p : motion.frames) source_leg += leg_length(p);
   source_leg /= motion.size();
   if (!(source_leg > 1e-6)) throw Error(motion.name + ": source legs have zero length");
-  const double ratio = (o[kLeftKnee].norm() + o[kLeftAnkle].norm()) / source_leg;
+  return (o[kLeftKnee].norm() + o[kLeftAnkle].norm()) / source_leg;
+}
+
+Motion retarget(const Motion& motion, double height_cm) {
+  const double ratio = retarget_scale(motion, height_cm);  // validates
+  const Pose o = canonical_rest_offsets(height_cm);
   Vector3d origin = motion.frames.front()[kPelvis];
   origin.z() = 0;
 

@@ -1,11 +1,13 @@
-// Placement of a sequence on the mat: centred, walking direction along the
+// Placement of a motion on the mat: centred, walking direction along the
 // long axis (row 0 = the far end the body walks towards), the body's left
-// towards col 0.
+// towards col 0; decided once per source motion and scaled to its copies.
+// Also the floor under a motion and the foot-pitch correction.
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
 
+#include "ptnet/error.hpp"
 #include "sim_internal.hpp"
 
 namespace ptnet::detail {
@@ -111,9 +113,15 @@ void correct_foot_pitch(Pose& pose, const std::array<double, 2>& offsets) {
   }
 }
 
-MatPlacement place_on_mat(const Motion& motion, const SimOptions& options) {
+}  // namespace ptnet::detail
+
+namespace ptnet {
+
+MotionPlacement place_motion(const Motion& motion, const SimOptions& options) {
   const int T = motion.size();
-  MatPlacement out;
+  if (T == 0) throw Error("place_motion: motion '" + motion.name + "' has no frames");
+  MotionPlacement out;
+  out.anchor = motion.frames.front()[kPelvis].head<2>();
   Eigen::Vector2d mean = Eigen::Vector2d::Zero(), facing = Eigen::Vector2d::Zero();
   for (const auto& pose : motion.frames) {
     mean += pose[kPelvis].head<2>();
@@ -178,7 +186,7 @@ MatPlacement place_on_mat(const Motion& motion, const SimOptions& options) {
       for (int k = pad; k >= 1; --k) ext.push_back(2 * x[0] - x[std::size_t(k)]);
       ext.insert(ext.end(), x.begin(), x.end());
       for (int k = 1; k <= pad; ++k) ext.push_back(2 * x[std::size_t(T - 1)] - x[std::size_t(T - 1 - k)]);
-      ext = gaussian_smooth(ext, sigma);
+      ext = detail::gaussian_smooth(ext, sigma);
       return std::vector<double>(ext.begin() + pad, ext.begin() + pad + T);
     };
     px = smooth_path(px);
@@ -188,4 +196,16 @@ MatPlacement place_on_mat(const Motion& motion, const SimOptions& options) {
   return out;
 }
 
-}  // namespace ptnet::detail
+MotionPlacement MotionPlacement::scaled(double ratio) const {
+  if (!(ratio > 0) || !std::isfinite(ratio))
+    throw Error("MotionPlacement::scaled: expected a positive ratio, found " + std::to_string(ratio));
+  MotionPlacement out = *this;
+  for (Eigen::Vector2d& c : out.centre) c = anchor + ratio * (c - anchor);
+  return out;
+}
+
+MotionPlacement place_copy(const Motion& source, double height_cm, const SimOptions& options) {
+  return place_motion(source, options).scaled(retarget_scale(source, height_cm));
+}
+
+}  // namespace ptnet

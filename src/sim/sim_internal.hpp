@@ -13,14 +13,6 @@
 
 namespace ptnet::detail {
 
-// Where the mat lies under a sequence: world -> mat coordinates per frame,
-// X = axis . (p - centre) (towards row 0), Y = left . (p - centre) (towards col 0).
-struct MatPlacement {
-  Eigen::Vector2d axis{1, 0}, left{0, 1};
-  std::vector<Eigen::Vector2d> centre;  // [T] (all equal for Placement::fixed)
-};
-MatPlacement place_on_mat(const Motion& motion, const SimOptions& options);
-
 // Some rigs put the toe joint well above the metatarsal heads, so a flat
 // foot's ankle -> toe bone is flatter than the canonical 20.8 degrees and the
 // sole would stand on its heel. Per foot (left, right): the canonical rest

@@ -48,10 +48,20 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
   return simulate(motion, body, options, nullptr);
 }
 
-PressureSequence simulate(const Motion& input, const Body& body, const SimOptions& options,
+PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
                           std::vector<FrameTrace>* trace) {
   check_options(options);
+  if (motion.size() == 0) throw Error("simulate: motion '" + motion.name + "' has no frames");
+  return simulate(motion, body, options, place_motion(motion, options), trace);
+}
+
+PressureSequence simulate(const Motion& input, const Body& body, const SimOptions& options,
+                          const MotionPlacement& place, std::vector<FrameTrace>* trace) {
+  check_options(options);
   if (input.size() == 0) throw Error("simulate: motion '" + input.name + "' has no frames");
+  if (place.centre.size() != std::size_t(input.size()))
+    throw Error("simulate: motion '" + input.name + "' has " + std::to_string(input.size()) +
+                " frames but its placement " + std::to_string(place.centre.size()));
   // Feet whose toe joint sits off the canonical sole (rig conventions) are
   // pitched back to it; canonical motions are used as they are.
   const std::array<double, 2> pitch = detail::foot_pitch_offsets(input);
@@ -67,7 +77,6 @@ PressureSequence simulate(const Motion& input, const Body& body, const SimOption
   PressureSequence seq(mat, T, motion.fps);
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
-  const detail::MatPlacement place = detail::place_on_mat(motion, options);
   const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
   const std::vector<double> floor = detail::floor_track(motion, body, options.floor_window_s, 0.25);
   detail::Rasteriser raster(mat, options.subsamples, options.compliance_m, options.max_sink_m);
@@ -102,5 +111,7 @@ std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name) {
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
 }
+
+std::uint64_t floor_seed(std::uint64_t seed, const std::string& name) { return sequence_seed(seed, name + "/floor"); }
 
 }  // namespace ptnet

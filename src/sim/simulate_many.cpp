@@ -20,7 +20,9 @@ std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
   parallel_for(n, threads, [&](int i) {
     SimOptions o = options;
     o.seed = jobs[std::size_t(i)].seed;
-    out[std::size_t(i)] = simulate(*jobs[std::size_t(i)].motion, *jobs[std::size_t(i)].body, o);
+    const SimJob& job = jobs[std::size_t(i)];
+    out[std::size_t(i)] = job.placement ? simulate(*job.motion, *job.body, o, *job.placement)
+                                        : simulate(*job.motion, *job.body, o);
     std::lock_guard<std::mutex> lock(mutex);
     ++done;
     if (progress) progress(done, n);

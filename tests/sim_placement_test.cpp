@@ -1,0 +1,120 @@
+// Placement per motion (issue 10, item 1): a motion's axis, centre and turn
+// on the mat are decided once from the source motion and scaled to every
+// body's copy, so that body-scale alignment (zoom about the mat centre by
+// the height ratio) maps one body's sequence onto another's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "data_test_util.hpp"
+#include "ptnet/body.hpp"
+#include "ptnet/data.hpp"
+#include "ptnet/eval.hpp"
+#include "ptnet/motion.hpp"
+#include "ptnet/sim.hpp"
+#include "ptnet/simulate_dataset.hpp"
+
+namespace ptnet {
+namespace {
+
+// The demo's held-out original bodies (sample_bodies draws them from their
+// own streams: the same as in `ptnet demo --seed 1`).
+std::vector<BodySpec> demo_originals() { return sample_bodies(0, 0, 2, 2, 1); }
+
+const BodySpec& by_height(const std::vector<BodySpec>& bodies, bool tallest) {
+  return *std::max_element(bodies.begin(), bodies.end(), [&](const BodySpec& a, const BodySpec& b) {
+    return tallest ? a.height_cm < b.height_cm : a.height_cm > b.height_cm;
+  });
+}
+
+Motion embedded_motion(const std::string& motion_id, double seconds) {
+  for (const ClipSource& c : embedded_clips(5, 2, seconds, 1))
+    if (c.meta.motion_id == motion_id) return load_clip(c, 30);
+  ADD_FAILURE() << "no embedded clip " << motion_id;
+  return {};
+}
+
+TEST(Placement, ScaledPlacementIsTheCopysOwnWhenNoDecisionFlips) {
+  // A walk: its copies' own placements have the source's axis and the
+  // source's centres scaled about frame 0's pelvis, as retarget scales the path.
+  const Motion source = embedded_motion("p2_walking_t1", 6);
+  for (Placement mode : {Placement::fixed, Placement::follow}) {
+    SimOptions o;
+    o.placement = mode;
+    for (double h : {140.0, 195.0}) {
+      const MotionPlacement own = place_motion(retarget(source, h), o);
+      const MotionPlacement shared = place_copy(source, h, o);
+      EXPECT_NEAR((own.axis - shared.axis).norm(), 0.0, 1e-9);
+      ASSERT_EQ(own.centre.size(), shared.centre.size());
+      for (std::size_t t = 0; t < own.centre.size(); ++t)
+        ASSERT_NEAR((own.centre[t] - shared.centre[t]).norm(), 0.0, 1e-6) << placement_name(mode) << " t " << t;
+    }
+  }
+}
+
+TEST(Placement, OneAxisForEveryCopyEvenWhenTheCopysOwnPathWouldFlipIt) {
+  // An exercise in place on a 170 cm body, drifting 0.36 m diagonally: a
+  // little more than the 0.3 m "moves" threshold, so its axis is the drift.
+  // A 0.7 x copy drifts less than 0.3 m and, placed on its own, would be laid
+  // along its facing direction instead; placed per motion it keeps the axis.
+  Motion source = retarget(embedded_motion("p4_rom_t2", 4), 170);
+  for (int t = 0; t < source.size(); ++t) {
+    const double drift = 0.36 * t / (source.size() - 1);
+    for (auto& j : source.frames[std::size_t(t)]) j += Eigen::Vector3d(0.6 * drift, 0.8 * drift, 0);
+  }
+  SimOptions o;
+  const MotionPlacement src = place_motion(source, o);
+  const MotionPlacement own = place_motion(retarget(source, 119), o);
+  const MotionPlacement shared = place_copy(source, 119, o);
+  EXPECT_NEAR(std::abs(src.axis.dot(Eigen::Vector2d(0.6, 0.8))), 1.0, 0.05);
+  EXPECT_NEAR((shared.axis - src.axis).norm(), 0.0, 1e-12);
+  EXPECT_GT((own.axis - src.axis).norm(), 0.1) << "the copy's own placement no longer flips: adjust the drift";
+}
+
+TEST(Placement, GivenPlacementMustMatchTheMotion) {
+  const Motion m = embedded_motion("p1_walking_t1", 2);
+  const Body body(BodySpec{"b", Sex::female, 160, 60, "retargeted"});
+  SimOptions o;
+  MotionPlacement p = place_motion(m, o);
+  p.centre.pop_back();
+  EXPECT_NE(testing_util::error_of([&] { simulate(m, body, o, p); }).find("placement"), std::string::npos);
+  EXPECT_NE(testing_util::error_of([&] { p.scaled(0); }).find("positive ratio"), std::string::npos);
+}
+
+TEST(Placement, TallestAndShortestOriginalAgreeAfterBodyScaleOnEveryEmbeddedMotion) {
+  // Every motion of the embedded set (5 performers x 4 categories x 2 takes,
+  // 8 s as in the demo), on the tallest and shortest original body of the demo:
+  // the tall copy zoomed by the height ratio puts its centre of pressure
+  // where the short copy's is, within one cell (mean over frames where both
+  // carry load), both fixed mat and follow.
+  const auto originals = demo_originals();
+  const BodySpec& tall = by_height(originals, true);
+  const BodySpec& shorter = by_height(originals, false);
+  ASSERT_GT(tall.height_cm - shorter.height_cm, 20.0);
+  const Body tall_body(tall), short_body(shorter);
+  for (Placement mode : {Placement::fixed, Placement::follow}) {
+    SimOptions o;
+    o.placement = mode;
+    double worst = 0;
+    std::string worst_id;
+    for (const ClipSource& clip : embedded_clips(5, 2, 8.0, 1)) {
+      const Motion source = load_clip(clip, 30);
+      const MotionPlacement place = place_motion(source, o);
+      auto copy_on = [&](const BodySpec& b, const Body& body) {
+        return simulate(retarget(source, b.height_cm), body, o, place.scaled(retarget_scale(source, b.height_cm)));
+      };
+      const PressureSequence t = copy_on(tall, tall_body), s = copy_on(shorter, short_body);
+      const SequenceMetrics m = compare(body_scale_baseline(t, tall, shorter), s, {});
+      ASSERT_GT(m.cop_frames, 0) << clip.meta.motion_id;
+      EXPECT_LT(m.cop_error_cm, 100 * o.mat.pitch_m) << clip.meta.motion_id << " " << placement_name(mode);
+      if (m.cop_error_cm > worst) worst = m.cop_error_cm, worst_id = clip.meta.motion_id;
+    }
+    std::printf("[placement %s] worst mean CoP distance after body scale: %.2f cm (%s)\n", placement_name(mode),
+                worst, worst_id.c_str());
+  }
+}
+
+}  // namespace
+}  // namespace ptnet
