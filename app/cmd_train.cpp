@@ -73,6 +73,7 @@ void run(const TrainCli& c) {
   o.fit_contact_threshold = !c.no_contact_threshold;
   o.force = c.force;
   o.quiet = globals().quiet;
+  o.progress = train_progress(o.epochs);
   if (o.resume && !o.init.empty()) throw Error("--resume and --init exclude each other");
   auto source = open_dataset_source(c.data);
   train(*source, c.out, o);
@@ -84,7 +85,8 @@ void setup(CLI::App& app) {
       "train",
       "Train PressureTransferNet on a dataset (pairs of the same motion on two retargeted bodies,\n"
       "take-1 motions; original bodies and take-2 motions are never used) into a model folder:\n"
-      "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr.\n"
+      "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr\n"
+      "(on a terminal also a progress line inside each epoch: windows, windows/s, ETA).\n"
       "Presets: paper = the paper's network, batch 1028, Adam lr 0.01 halved every 20 epochs, 500 epochs,\n"
       "patience 50, widths 64/128/256, every window at stride 1; fast = ours: residual network on\n"
       "body-scale aligned input (--arch residual --align zoom), widths 16/32/64, batch 64, lr 2e-3\n"
