@@ -143,9 +143,9 @@ std::vector<std::pair<std::string, std::string>> bar_charts(const Summary& s) {
     auto it = s.groups.find(seen);
     if (it == s.groups.end()) continue;
     for (const auto& [metric, label] : {std::pair<std::string, std::string>{"rmse_kpa", "RMSE (kPa), lower is better"},
-                                        {"binary_r2", "binary R^2, higher is better"}}) {
+                                        {"binary_r2", "binary R\xc2\xb2, higher is better"}}) {
       BarChart c;
-      c.title = std::string(metric == "rmse_kpa" ? "RMSE" : "Binary R^2") + ", " + split_name(seen) + " motions";
+      c.title = std::string(metric == "rmse_kpa" ? "RMSE" : "Binary R\xc2\xb2") + ", " + split_name(seen) + " motions";
       c.y_label = label;
       c.groups = it->second;
       c.width = 600;
