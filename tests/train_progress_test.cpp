@@ -39,7 +39,7 @@ TEST(TrainProgress, CalledAfterEachOptimiserStep) {
 class TrainProgressCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    MemorySource src = testing::synth_source(4, 2, 90);
+    MemorySource src = testing::synth_source(4, 4, 150);  // ~1300 training windows
     DatasetInfo info;
     info.mat = src.mat();
     info.generator = "train_progress_test";
@@ -74,7 +74,7 @@ TEST_F(TrainProgressCli, ATerminalGetsAProgressLineInsideEachEpoch) {
                           " >/dev/null\" '" + typescript + "' >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string shown = testing_cli::slurp(typescript);
-  EXPECT_NE(shown.find("epoch 1/2: 16/2048 windows"), std::string::npos) << shown;
+  EXPECT_TRUE(std::regex_search(shown, std::regex("epoch 1/2: 16/[0-9]+ windows"))) << shown;
   EXPECT_NE(shown.find("windows/s, ETA "), std::string::npos) << shown;
   EXPECT_NE(shown.find("run ETA "), std::string::npos) << shown;
   EXPECT_NE(shown.find("\r\033[K[epoch 1/2] train "), std::string::npos) << "the progress line is erased before the epoch line";
