@@ -295,11 +295,13 @@ std::vector<std::string> write_report_html(const std::vector<EvalRow>& rows,
   b << "</div>\n";
 
   b << "<h2>One pair per category</h2>\n<p class=\"note\">The first seen pair of each category (test_pairs order); "
-       "the still shows evenly spaced frames, the animation the whole pair in real time. Click a still for full "
-       "size.</p>\n";
+       "the still shows evenly spaced frames at full size, the animation the whole pair in real time "
+       "(at most 150 frames).</p>\n";
   for (const auto& f : categories) b << "<h3>" << html_escape(f.row.category) << "</h3>\n" << figure_html(f);
 
-  b << "<h2>The " << worst.size() << " worst pairs (model RMSE)</h2>\n" << worst_html(rows, worst);
+  b << "<h2>The " << worst.size() << " worst pairs (model RMSE)</h2>\n<p class=\"note\">Each figure shows the pair's "
+       "frames with the largest summed |error|.</p>\n"
+    << worst_html(rows, worst);
 
   b << "<h2>Model</h2>\n";
   const fs::path model(options.model_dir);

@@ -47,10 +47,32 @@ PressureSequence absolute_error(const PressureSequence& a, const PressureSequenc
   return e;
 }
 
+// The `count` frames with the largest summed |error|, at least T / (2 count)
+// frames apart, in time order.
+std::vector<int> worst_frames(const PressureSequence& err, int count) {
+  const int t_count = err.frames(), cells = err.mat.cells();
+  std::vector<std::pair<double, int>> by_error;
+  for (int t = 0; t < t_count; ++t) {
+    double sum = 0;
+    for (int i = 0; i < cells; ++i) sum += err.kpa[std::size_t(t) * cells + i];
+    by_error.emplace_back(-sum, t);
+  }
+  std::sort(by_error.begin(), by_error.end());
+  const int gap = std::max(1, t_count / (2 * std::max(1, count)));
+  std::vector<int> picked;
+  for (const auto& [neg, t] : by_error) {
+    if (int(picked.size()) == count) break;
+    if (std::all_of(picked.begin(), picked.end(), [&](int p) { return std::abs(p - t) >= gap; })) picked.push_back(t);
+  }
+  std::sort(picked.begin(), picked.end());
+  return picked;
+}
+
 // Source / ground truth / transferred / |error| of one pair, transferred
-// again with `model`; `still` and `gif` (when not empty) name the files.
+// again with `model`; `still` and `gif` (when not empty) name the files. The
+// still shows `frames` evenly spaced frames, or the worst ones (worst_frames).
 void write_pair_figure(const Dataset& dataset, const TestPair& pair, const TransferFn& model,
-                       const std::string& still, const std::string& gif, int frames, bool force) {
+                       const std::string& still, const std::string& gif, int frames, bool worst, bool force) {
   const PairData data = load_pair(dataset, pair);
   const PressureSequence out = model(data.source, data.source_body, data.target_body);
   const PressureSequence err = absolute_error(out, data.truth);
@@ -61,6 +83,7 @@ void write_pair_figure(const Dataset& dataset, const TestPair& pair, const Trans
                                         {tag + "|error|", "same kPa scale", &err}};
   FigureOptions fo;
   fo.frames = frames;
+  if (worst) fo.frame_list = worst_frames(err, frames);
   fo.cell_px = kStillCellPx;
   write_png(still, render_strip(panels, fo), force);
   if (gif.empty()) return;
@@ -128,7 +151,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
     const std::string png = std::string("qualitative_") + category + ".png";
     const std::string gif = std::string("qualitative_") + category + ".gif";
     write_pair_figure(dataset, it->second, model, path(png), path(gif), options.frames_per_category,
-                      options.force);
+                      /*worst=*/false, options.force);
     written.push_back(path(png));
     written.push_back(path(gif));
     categories.push_back({model_row(it->second), png, gif});
@@ -136,7 +159,8 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
   std::vector<PairFigure> worst;
   for (const EvalRow& r : worst_pairs(rows, kWorstPairs)) {
     const std::string png = "worst_" + std::to_string(worst.size() + 1) + ".png";
-    write_pair_figure(dataset, pair_of(r), model, path(png), "", options.frames_per_category, options.force);
+    write_pair_figure(dataset, pair_of(r), model, path(png), "", options.frames_per_category, /*worst=*/true,
+                      options.force);
     written.push_back(path(png));
     worst.push_back({r, png, ""});
   }

@@ -22,8 +22,8 @@ td.best { background: #e3f4e3; } td.paper { color: #666; }
 .charts img { border: 1px solid #eee; }
 figure { margin: 12px 0 28px; } figcaption { font-size: 13px; color: #444; margin-bottom: 6px; }
 figure .pair { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
-figure img.still { max-width: 100%; height: auto; max-height: 900px; border: 1px solid #eee; }
-figure img.anim { max-width: 100%; height: auto; border: 1px solid #eee; }
+figure img.still, figure img.anim { max-width: 100%; height: auto; border: 1px solid #eee; }
+img { image-rendering: pixelated; } .charts img { image-rendering: auto; }
 pre { background: #f7f7f7; padding: 8px; font-size: 12px; overflow-x: auto; max-height: 420px; }
 )css";
 
