@@ -19,6 +19,7 @@
 #include "ptnet/eval.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/train.hpp"
+#include "report_test_util.hpp"
 #include "train_synthetic.hpp"
 
 namespace ptnet {
@@ -26,33 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing_util::TempDir;
-
-const char* const kCategories[] = {"walking", "rom", "freestyle", "acting"};
-
-// 4 retargeted bodies (training) and 2 original ones (test pairs); per
-// category one take-1 and one take-2 motion on every body; 16 x 8 mat.
-void write_dataset(const std::string& path) {
-  const MatSpec mat{testing::kSynthRows, testing::kSynthCols, 0.02};
-  DatasetInfo info;
-  info.mat = mat;
-  info.generator = "eval_report_page_smoke_test";
-  std::vector<BodySpec> bodies;
-  for (int b = 0; b < 6; ++b)
-    bodies.push_back(BodySpec{(b < 4 ? "r" : "o") + std::to_string(b), b % 2 ? Sex::male : Sex::female,
-                              152.0 + 7 * b, 50.0 + 9 * ((b * 5) % 6), b < 4 ? "retargeted" : "original"});
-  DatasetWriter w(path, info, bodies, false);
-  int motion = 0;
-  for (int take : {1, 2})
-    for (const char* category : kCategories) {
-      for (const auto& body : bodies) {
-        SequenceMeta m = testing_util::meta_for(std::string(category) + "_t" + std::to_string(take), body.id, take,
-                                                category);
-        w.add(m, testing::synth_sequence(motion, body, 96, mat));
-      }
-      ++motion;
-    }
-  w.commit();
-}
 
 std::string fixed(double v, int digits) {
   char buf[64];
@@ -95,7 +69,7 @@ std::map<std::string, std::string> expected_cells(const std::vector<EvalRow>& ro
 TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
   TempDir dir("report_page");
   const std::string data = dir.file("data.h5"), model = dir.file("model"), report = dir.file("report");
-  write_dataset(data);
+  testing::write_report_dataset(data);
   const auto source = open_dataset_source(data);
   train(*source, model, testing::synth_options(/*epochs=*/1));
 
@@ -106,7 +80,7 @@ TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
   const fs::path page = fs::path(report) / "index.html";
   EXPECT_NE(run.out.find("open " + page.string() + " in a browser"), std::string::npos) << run.out;
   ASSERT_TRUE(fs::exists(page));
-  for (const char* category : kCategories)
+  for (const char* category : testing::kReportCategories)
     for (const char* ext : {".png", ".gif"})
       EXPECT_TRUE(fs::exists(fs::path(report) / (std::string("qualitative_") + category + ext))) << category << ext;
   for (int i = 1; i <= 5; ++i) EXPECT_TRUE(fs::exists(fs::path(report) / ("worst_" + std::to_string(i) + ".png")));

@@ -1,8 +1,10 @@
 // The HAR report page (issue 16) in a real browser: har/index.html of a
-// hand-made result (3 sources, 3 clusters, 2 categories) loads headless from
-// file:// with every image and chart, Table 3's cells equal results.json
-// (mean +- std), and a screenshot is saved in the build folder
-// (har_report_page.png). Skips only where chromium is not installed.
+// hand-made result (3 sources, 3 clusters, 2 categories) and of a real
+// `ptnet validate-har` run on a small dataset load headless from file://
+// with every image and chart, Table 3's cells equal results.json (mean +-
+// std), and screenshots are saved in the build folder
+// (har_report_page.png, har_report_page_cli.png). Skips only where chromium
+// is not installed.
 #include <gtest/gtest.h>
 
 #if defined(PTNET_HAR_HTML)
@@ -11,9 +13,11 @@
 #include <nlohmann/json.hpp>
 
 #include "browser_test_util.hpp"
+#include "cli_test_util.hpp"
 #include "data_test_util.hpp"
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"
+#include "report_test_util.hpp"
 
 namespace ptnet::har {
 namespace {
@@ -69,6 +73,21 @@ std::string spread(const nlohmann::json& x) {
   return buf;
 }
 
+// Table 3's cells on the loaded page equal results.json.
+void check_table3(const std::string& dom, const std::string& results_path) {
+  const auto results = nlohmann::json::parse(read_text_file(results_path));
+  const auto cells = testing_browser::data_cells(dom, {"data-source", "data-metric"});
+  ASSERT_EQ(cells.size(), 9u);  // 3 sources x (macro F1, category macro F1, accuracy)
+  for (const auto& s : results["sources"]) {
+    const std::string source = s["source"];
+    EXPECT_EQ(cells.at(source + "|macro_f1"), spread(s["macro_f1"])) << source;
+    EXPECT_EQ(cells.at(source + "|category_macro_f1"), spread(s["category_macro_f1"])) << source;
+    char acc[32];
+    std::snprintf(acc, sizeof acc, "%.3f", s["accuracy"]["mean"].get<double>());
+    EXPECT_EQ(cells.at(source + "|accuracy"), acc) << source;
+  }
+}
+
 TEST(HarReportPage, LoadsInChromiumWithTable3EqualToResultsJson) {
   testing_util::TempDir dir("har_page");
   const HarResult r = hand_made_result();
@@ -91,23 +110,36 @@ TEST(HarReportPage, LoadsInChromiumWithTable3EqualToResultsJson) {
   EXPECT_TRUE(load.console.empty()) << load.console.front();
   EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 10000) << "no screenshot at " << shot;
 
-  const auto results = nlohmann::json::parse(read_text_file(dir.file("results.json")));
-  const auto cells = testing_browser::data_cells(load.dom, {"data-source", "data-metric"});
-  ASSERT_EQ(cells.size(), 9u);  // 3 sources x (macro F1, category macro F1, accuracy)
-  for (const auto& s : results["sources"]) {
-    const std::string source = s["source"];
-    EXPECT_EQ(cells.at(source + "|macro_f1"), spread(s["macro_f1"])) << source;
-    EXPECT_EQ(cells.at(source + "|category_macro_f1"), spread(s["category_macro_f1"])) << source;
-    char acc[32];
-    std::snprintf(acc, sizeof acc, "%.3f", s["accuracy"]["mean"].get<double>());
-    EXPECT_EQ(cells.at(source + "|accuracy"), acc) << source;
-  }
+  check_table3(load.dom, dir.file("results.json"));
   // The confusion matrices as tables: 3 pseudo-label and 3 category ones.
   std::size_t tables = 0;
   for (std::size_t at = load.dom.find("class=\"confusion\""); at != std::string::npos;
        at = load.dom.find("class=\"confusion\"", at + 1))
     ++tables;
   EXPECT_EQ(tables, 6u);
+}
+
+TEST(HarReportPage, ValidateHarWritesThePageAndItLoads) {
+  testing_util::TempDir dir("har_page_cli");
+  const std::string data = dir.file("real.h5"), out = dir.file("har");
+  testing::write_report_dataset(data);
+  const auto run = testing_cli::run_ptnet("validate-har --real '" + data + "' --baseline copy --train-subjects r0,r1,r2 "
+                                          "--test-subjects o4,o5 --runs 2 --epochs 2 --synthetic-bodies 2 --stride 10 "
+                                          "--out '" + out + "'",
+                                          dir.path / "har");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const fs::path page = fs::path(out) / "index.html";
+  EXPECT_NE(run.out.find("open " + page.string() + " in a browser"), std::string::npos) << run.out;
+  ASSERT_TRUE(fs::exists(page));
+
+  const std::string chromium = testing_browser::find_chromium();
+  if (chromium.empty()) GTEST_SKIP() << testing_browser::kNoChromium;
+  const auto load = testing_browser::load_page(chromium, page, fs::path(PTNET_BINARY).parent_path() / "har_report_page_cli.png");
+  ASSERT_EQ(load.status, 0) << load.log;
+  EXPECT_EQ(load.ok, "yes") << "failures: " << load.failures;
+  EXPECT_EQ(load.images, 2);
+  EXPECT_TRUE(load.console.empty()) << load.console.front();
+  check_table3(load.dom, (fs::path(out) / "results.json").string());
 }
 
 }  // namespace
