@@ -42,9 +42,11 @@ TEST(EvalHtmlReport, EveryMethodInTheRowsGetsItsColumnsAndBars) {
   EXPECT_EQ(written.size(), 5u);  // 4 charts + index.html (no model folder)
   const std::string page = read_text_file(dir.file("index.html"));
   EXPECT_NE(page.find("<th colspan=\"2\">noise floor</th>"), std::string::npos);
-  EXPECT_NE(page.find("data-method=\"floor\" data-group=\"walking\" data-split=\"unseen\" data-metric=\"rmse_kpa\">3.00<"),
+  EXPECT_NE(page.find("data-method=\"floor\" data-group=\"walking\" data-split=\"unseen\" "
+                      "data-metric=\"rmse_kpa\">3.00<"),
             std::string::npos);
-  EXPECT_NE(read_text_file(dir.file("chart_rmse_kpa_seen.svg")).find("noise floor: 2"), std::string::npos);
+  EXPECT_NE(read_text_file(dir.file("chart_rmse_kpa_seen.svg")).find("noise floor: 2"),
+            std::string::npos);
   EXPECT_NE(page.find("d&lt;ata&gt;.h5"), std::string::npos);
   EXPECT_EQ(page.find("walking<1>"), std::string::npos) << "unescaped text";
   EXPECT_NE(page.find("No model folder given."), std::string::npos);
@@ -53,8 +55,9 @@ TEST(EvalHtmlReport, EveryMethodInTheRowsGetsItsColumnsAndBars) {
 TEST(EvalHtmlReport, TrainingCurveFromHistoryCsvAndTheConfig) {
   TempDir dir("html_report_model");
   std::filesystem::create_directories(dir.path / "model");
-  std::ofstream(dir.path / "model" / "history.csv") << "epoch,train_loss,val_loss,lr,seconds\n1,0.5,0.6,0.002,1\n"
-                                                      "2,0.3,0.4,0.002,1\n";
+  std::ofstream(dir.path / "model" / "history.csv")
+      << "epoch,train_loss,val_loss,lr,seconds\n1,0.5,0.6,0.002,1\n"
+         "2,0.3,0.4,0.002,1\n";
   std::ofstream(dir.path / "model" / "config.json") << "{\"format\": \"<ptnet-model>\"}\n";
   std::filesystem::create_directories(dir.path / "report");
   ReportOptions o;
@@ -73,7 +76,9 @@ TEST(EvalHtmlReport, TrainingCurveFromHistoryCsvAndTheConfig) {
     write_report_html({row("model", "rom", 1, 1.0)}, {}, {}, "d.h5", o);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("history.csv:1: expected a column train_loss"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("history.csv:1: expected a column train_loss"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -68,22 +68,25 @@ std::map<std::string, std::string> expected_cells(const std::vector<EvalRow>& ro
 
 TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
   TempDir dir("report_page");
-  const std::string data = dir.file("data.h5"), model = dir.file("model"), report = dir.file("report");
+  const std::string data = dir.file("data.h5"), model = dir.file("model"),
+                    report = dir.file("report");
   testing::write_report_dataset(data);
   const auto source = open_dataset_source(data);
   train(*source, model, testing::synth_options(/*epochs=*/1));
 
-  const auto run = testing_cli::run_ptnet("evaluate --model '" + model + "' --data '" + data + "' --out '" + report +
-                                              "' --stride 10",
-                                          dir.path / "evaluate");
+  const auto run = testing_cli::run_ptnet(
+      "evaluate --model '" + model + "' --data '" + data + "' --out '" + report + "' --stride 10",
+      dir.path / "evaluate");
   ASSERT_EQ(run.status, 0) << run.err;
   const fs::path page = fs::path(report) / "index.html";
   EXPECT_NE(run.out.find("open " + page.string() + " in a browser"), std::string::npos) << run.out;
   ASSERT_TRUE(fs::exists(page));
   for (const char* category : testing::kReportCategories)
     for (const char* ext : {".png", ".gif"})
-      EXPECT_TRUE(fs::exists(fs::path(report) / (std::string("qualitative_") + category + ext))) << category << ext;
-  for (int i = 1; i <= 5; ++i) EXPECT_TRUE(fs::exists(fs::path(report) / ("worst_" + std::to_string(i) + ".png")));
+      EXPECT_TRUE(fs::exists(fs::path(report) / (std::string("qualitative_") + category + ext)))
+          << category << ext;
+  for (int i = 1; i <= 5; ++i)
+    EXPECT_TRUE(fs::exists(fs::path(report) / ("worst_" + std::to_string(i) + ".png")));
   EXPECT_TRUE(fs::exists(fs::path(report) / "training_curve.svg"));
 
   const std::string chromium = testing_browser::find_chromium();
@@ -95,13 +98,18 @@ TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
   // 4 charts, 4 stills + 4 GIFs, 5 worst pairs, the training curve.
   EXPECT_EQ(load.images, 18);
   EXPECT_TRUE(load.console.empty()) << load.console.front();
-  EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 10000) << "no screenshot at " << shot << "\n" << load.log;
+  EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 10000)
+      << "no screenshot at " << shot << "\n"
+      << load.log;
 
-  const auto rows = parse_metrics_csv(read_text_file((fs::path(report) / "metrics.csv").string()), "metrics.csv");
+  const auto rows =
+      parse_metrics_csv(read_text_file((fs::path(report) / "metrics.csv").string()), "metrics.csv");
   const auto expected = expected_cells(rows);
-  auto cells = testing_browser::data_cells(load.dom, {"data-method", "data-group", "data-split", "data-metric"});
+  auto cells = testing_browser::data_cells(
+      load.dom, {"data-method", "data-group", "data-split", "data-metric"});
   // The paper's figures come from metrics.json, the rest from metrics.csv.
-  const auto paper = nlohmann::json::parse(read_text_file((fs::path(report) / "metrics.json").string()))["paper_table2"];
+  const auto paper = nlohmann::json::parse(
+      read_text_file((fs::path(report) / "metrics.json").string()))["paper_table2"];
   int paper_cells = 0;
   for (auto it = cells.begin(); it != cells.end();) {
     if (it->first.rfind("paper|", 0) != 0) {
@@ -112,7 +120,8 @@ TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
     const bool seen = it->first.find("|seen|") != std::string::npos;
     const bool rmse = it->first.find("|rmse_kpa") != std::string::npos;
     const auto& split = paper[seen ? "seen" : "unseen"];
-    EXPECT_EQ(it->second, split.contains(group) ? fixed(split[group][rmse ? 0 : 1].get<double>(), 2) : "\xe2\x80\x93")
+    EXPECT_EQ(it->second, split.contains(group) ? fixed(split[group][rmse ? 0 : 1].get<double>(), 2)
+                                                : "\xe2\x80\x93")
         << it->first;
     ++paper_cells;
     it = cells.erase(it);
@@ -121,8 +130,10 @@ TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
   EXPECT_EQ(cells.size(), expected.size());
   for (const auto& [key, text] : expected) {
     auto it = cells.find(key);
-    if (it == cells.end()) ADD_FAILURE() << "no cell " << key << " on the page";
-    else EXPECT_EQ(it->second, text) << key;
+    if (it == cells.end())
+      ADD_FAILURE() << "no cell " << key << " on the page";
+    else
+      EXPECT_EQ(it->second, text) << key;
   }
 }
 

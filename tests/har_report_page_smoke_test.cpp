@@ -69,7 +69,8 @@ HarResult hand_made_result() {
 
 std::string spread(const nlohmann::json& x) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.3f \xc2\xb1 %.3f", x["mean"].get<double>(), x["std"].get<double>());
+  std::snprintf(buf, sizeof buf, "%.3f \xc2\xb1 %.3f", x["mean"].get<double>(),
+                x["std"].get<double>());
   return buf;
 }
 
@@ -123,10 +124,13 @@ TEST(HarReportPage, ValidateHarWritesThePageAndItLoads) {
   testing_util::TempDir dir("har_page_cli");
   const std::string data = dir.file("real.h5"), out = dir.file("har");
   testing::write_report_dataset(data);
-  const auto run = testing_cli::run_ptnet("validate-har --real '" + data + "' --baseline copy --train-subjects r0,r1,r2 "
-                                          "--test-subjects o4,o5 --runs 2 --epochs 2 --synthetic-bodies 2 --stride 10 "
-                                          "--out '" + out + "'",
-                                          dir.path / "har");
+  const auto run = testing_cli::run_ptnet(
+      "validate-har --real '" + data +
+          "' --baseline copy --train-subjects r0,r1,r2 "
+          "--test-subjects o4,o5 --runs 2 --epochs 2 --synthetic-bodies 2 --stride 10 "
+          "--out '" +
+          out + "'",
+      dir.path / "har");
   ASSERT_EQ(run.status, 0) << run.err;
   const fs::path page = fs::path(out) / "index.html";
   EXPECT_NE(run.out.find("open " + page.string() + " in a browser"), std::string::npos) << run.out;
@@ -134,7 +138,8 @@ TEST(HarReportPage, ValidateHarWritesThePageAndItLoads) {
 
   const std::string chromium = testing_browser::find_chromium();
   if (chromium.empty()) GTEST_SKIP() << testing_browser::kNoChromium;
-  const auto load = testing_browser::load_page(chromium, page, fs::path(PTNET_BINARY).parent_path() / "har_report_page_cli.png");
+  const auto load = testing_browser::load_page(
+      chromium, page, fs::path(PTNET_BINARY).parent_path() / "har_report_page_cli.png");
   ASSERT_EQ(load.status, 0) << load.log;
   EXPECT_EQ(load.ok, "yes") << "failures: " << load.failures;
   EXPECT_EQ(load.images, 2);

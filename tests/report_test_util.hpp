@@ -23,15 +23,16 @@ inline void write_report_dataset(const std::string& path) {
   info.generator = "report page tests";
   std::vector<BodySpec> bodies;
   for (int b = 0; b < 6; ++b)
-    bodies.push_back(BodySpec{(b < 4 ? "r" : "o") + std::to_string(b), b % 2 ? Sex::male : Sex::female,
-                              152.0 + 7 * b, 50.0 + 9 * ((b * 5) % 6), b < 4 ? "retargeted" : "original"});
+    bodies.push_back(BodySpec{(b < 4 ? "r" : "o") + std::to_string(b),
+                              b % 2 ? Sex::male : Sex::female, 152.0 + 7 * b,
+                              50.0 + 9 * ((b * 5) % 6), b < 4 ? "retargeted" : "original"});
   DatasetWriter w(path, info, bodies, false);
   int motion = 0;
   for (int take : {1, 2})
     for (const char* category : kReportCategories) {
       for (const auto& body : bodies) {
-        SequenceMeta m = testing_util::meta_for(std::string(category) + "_t" + std::to_string(take), body.id, take,
-                                                category);
+        SequenceMeta m = testing_util::meta_for(std::string(category) + "_t" + std::to_string(take),
+                                                body.id, take, category);
         w.add(m, synth_sequence(motion, body, 96, mat));
       }
       ++motion;

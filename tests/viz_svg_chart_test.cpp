@@ -37,7 +37,8 @@ TEST(SvgBarChart, OneBarPerFiniteValueWithItsValueInTheTooltip) {
   c.groups = {"walking", "rom", "average"};
   c.series = {{"model", {1.5, 2.25, NAN}, {}}, {"copy", {3, 4, 3.5}, {0.5, 0.5, 0.5}}};
   const std::string svg = svg_bar_chart(c);
-  EXPECT_EQ(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"300\"", 0), 0u);
+  EXPECT_EQ(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"300\"", 0),
+            0u);
   EXPECT_EQ(count(svg, "<rect x="), 5u + 2u);  // 5 bars + 2 legend boxes
   EXPECT_NE(svg.find("<title>rom, model: 2.25</title>"), std::string::npos);
   EXPECT_NE(svg.find("RMSE &lt;seen&gt;"), std::string::npos);

@@ -31,6 +31,7 @@ std::vector<EvalRow> worst_pairs(const std::vector<EvalRow>& rows, int count);
 std::vector<std::string> write_report_html(const std::vector<EvalRow>& rows,
                                            const std::vector<PairFigure>& categories,
                                            const std::vector<PairFigure>& worst,
-                                           const std::string& dataset_path, const ReportOptions& options);
+                                           const std::string& dataset_path,
+                                           const ReportOptions& options);
 
 }  // namespace ptnet

@@ -53,21 +53,33 @@ std::string html_escape(const std::string& text) {
   std::string out;
   out.reserve(text.size());
   for (char c : text) switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   return out;
 }
 
 std::string html_page(const std::string& title, const std::string& body_html) {
   return std::string("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n") +
-         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" + html_escape(title) +
-         "</title>\n<style>" + kStyle + "</style>\n<script>" + kCheckScript + "</script>\n</head>\n<body>\n" +
-         body_html + "\n<p class=\"note\">Written by ptnet " + PTNET_VERSION +
+         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
+         html_escape(title) + "</title>\n<style>" + kStyle + "</style>\n<script>" + kCheckScript +
+         "</script>\n</head>\n<body>\n" + body_html + "\n<p class=\"note\">Written by ptnet " +
+         PTNET_VERSION +
          "; works offline: every image is a file beside this page.</p>\n</body>\n</html>\n";
 }
 

@@ -14,10 +14,10 @@
 namespace ptnet {
 namespace {
 
-constexpr int kLeft = 64;      // y tick labels and y label
+constexpr int kLeft = 64;  // y tick labels and y label
 constexpr int kRight = 16;
-constexpr int kTop = 56;       // title and legend
-constexpr int kBottom = 40;    // x labels
+constexpr int kTop = 56;     // title and legend
+constexpr int kBottom = 40;  // x labels
 constexpr int kFontPx = 12;
 constexpr const char* kAxisInk = "#555555";
 constexpr const char* kGridInk = "#e4e4e4";
@@ -67,15 +67,16 @@ struct Frame {
 std::ostringstream open_svg(const Frame& f, const std::string& title) {
   std::ostringstream o;
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f.width << "\" height=\"" << f.height
-    << "\" viewBox=\"0 0 " << f.width << " " << f.height << "\" font-family=\"sans-serif\" font-size=\""
-    << kFontPx << "\">\n"
+    << "\" viewBox=\"0 0 " << f.width << " " << f.height
+    << "\" font-family=\"sans-serif\" font-size=\"" << kFontPx << "\">\n"
     << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n"
-    << "<text x=\"" << f.x0 << "\" y=\"18\" font-size=\"14\" font-weight=\"bold\">" << html_escape(title)
-    << "</text>\n";
+    << "<text x=\"" << f.x0 << "\" y=\"18\" font-size=\"14\" font-weight=\"bold\">"
+    << html_escape(title) << "</text>\n";
   return o;
 }
 
-void legend(std::ostringstream& o, const Frame& f, const std::vector<std::string>& names, bool lines) {
+void legend(std::ostringstream& o, const Frame& f, const std::vector<std::string>& names,
+            bool lines) {
   double x = f.x0;
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string c = chart_colour(int(i));
@@ -95,17 +96,18 @@ void y_axis(std::ostringstream& o, const Frame& f, const Axis& a, const std::str
     const double y = a.px(v, f.y1, f.y0);
     o << "<line x1=\"" << f.x0 << "\" y1=\"" << num(y) << "\" x2=\"" << f.x1 << "\" y2=\"" << num(y)
       << "\" stroke=\"" << (std::abs(v) < a.step * 1e-6 ? kAxisInk : kGridInk) << "\"/>\n"
-      << "<text x=\"" << f.x0 - 6 << "\" y=\"" << num(y + 4) << "\" text-anchor=\"end\" fill=\"" << kAxisInk
-      << "\">" << tick_text(v, a.step) << "</text>\n";
+      << "<text x=\"" << f.x0 - 6 << "\" y=\"" << num(y + 4) << "\" text-anchor=\"end\" fill=\""
+      << kAxisInk << "\">" << tick_text(v, a.step) << "</text>\n";
   }
   const double cy = (f.y0 + f.y1) / 2;
-  o << "<text x=\"14\" y=\"" << num(cy) << "\" text-anchor=\"middle\" transform=\"rotate(-90 14 " << num(cy)
-    << ")\" fill=\"" << kAxisInk << "\">" << html_escape(label) << "</text>\n";
+  o << "<text x=\"14\" y=\"" << num(cy) << "\" text-anchor=\"middle\" transform=\"rotate(-90 14 "
+    << num(cy) << ")\" fill=\"" << kAxisInk << "\">" << html_escape(label) << "</text>\n";
 }
 
 void check_size(int width, int height) {
   if (width < kLeft + kRight + 40 || height < kTop + kBottom + 40)
-    throw Error("chart: " + std::to_string(width) + " x " + std::to_string(height) + " px is too small");
+    throw Error("chart: " + std::to_string(width) + " x " + std::to_string(height) +
+                " px is too small");
 }
 
 }  // namespace
@@ -122,18 +124,21 @@ std::string svg_bar_chart(const BarChart& c) {
   double lo = 0, hi = 0;
   for (const auto& s : c.series) {
     if (s.values.size() != c.groups.size())
-      throw Error("chart '" + c.title + "': series '" + s.name + "' has " + std::to_string(s.values.size()) +
-                  " values for " + std::to_string(c.groups.size()) + " groups");
+      throw Error("chart '" + c.title + "': series '" + s.name + "' has " +
+                  std::to_string(s.values.size()) + " values for " +
+                  std::to_string(c.groups.size()) + " groups");
     for (std::size_t g = 0; g < s.values.size(); ++g) {
-      const double v = s.values[g], e = g < s.errors.size() && std::isfinite(s.errors[g]) ? s.errors[g] : 0;
+      const double v = s.values[g],
+                   e = g < s.errors.size() && std::isfinite(s.errors[g]) ? s.errors[g] : 0;
       if (!std::isfinite(v)) continue;
       lo = std::min(lo, v - e);
       hi = std::max(hi, v + e);
     }
   }
   const Axis a = make_axis(lo, hi, true);
-  const Frame f{c.width, c.height, double(kLeft), double(c.width - kRight), double(kTop),
-                double(c.height - kBottom)};
+  const Frame f{c.width,       c.height,
+                double(kLeft), double(c.width - kRight),
+                double(kTop),  double(c.height - kBottom)};
   std::ostringstream o = open_svg(f, c.title);
   std::vector<std::string> names;
   for (const auto& s : c.series) names.push_back(s.name);
@@ -144,21 +149,24 @@ std::string svg_bar_chart(const BarChart& c) {
   const double zero = a.px(0, f.y1, f.y0);
   for (std::size_t g = 0; g < c.groups.size(); ++g) {
     const double gx = f.x0 + group_w * double(g);
-    o << "<text x=\"" << num(gx + group_w / 2) << "\" y=\"" << num(f.y1 + 18) << "\" text-anchor=\"middle\">"
-      << html_escape(c.groups[g]) << "</text>\n";
+    o << "<text x=\"" << num(gx + group_w / 2) << "\" y=\"" << num(f.y1 + 18)
+      << "\" text-anchor=\"middle\">" << html_escape(c.groups[g]) << "</text>\n";
     for (std::size_t s = 0; s < c.series.size(); ++s) {
       const double v = c.series[s].values[g];
       if (!std::isfinite(v)) continue;
       const double x = gx + group_w * 0.1 + bar_w * double(s), y = a.px(v, f.y1, f.y0);
-      o << "<rect x=\"" << num(x) << "\" y=\"" << num(std::min(y, zero)) << "\" width=\"" << num(bar_w * 0.92)
-        << "\" height=\"" << num(std::abs(zero - y)) << "\" fill=\"" << chart_colour(int(s)) << "\"><title>"
-        << html_escape(c.groups[g] + ", " + c.series[s].name + ": " + value_text(v)) << "</title></rect>\n";
+      o << "<rect x=\"" << num(x) << "\" y=\"" << num(std::min(y, zero)) << "\" width=\""
+        << num(bar_w * 0.92) << "\" height=\"" << num(std::abs(zero - y)) << "\" fill=\""
+        << chart_colour(int(s)) << "\"><title>"
+        << html_escape(c.groups[g] + ", " + c.series[s].name + ": " + value_text(v))
+        << "</title></rect>\n";
       const auto& errors = c.series[s].errors;
       if (g < errors.size() && std::isfinite(errors[g]) && errors[g] > 0) {
         const double cx = x + bar_w * 0.46, ya = a.px(v - errors[g], f.y1, f.y0),
                      yb = a.px(v + errors[g], f.y1, f.y0);
-        o << "<path d=\"M" << num(cx) << " " << num(ya) << "V" << num(yb) << "M" << num(cx - 4) << " " << num(ya)
-          << "h8M" << num(cx - 4) << " " << num(yb) << "h8\" stroke=\"#222222\" fill=\"none\"/>\n";
+        o << "<path d=\"M" << num(cx) << " " << num(ya) << "V" << num(yb) << "M" << num(cx - 4)
+          << " " << num(ya) << "h8M" << num(cx - 4) << " " << num(yb)
+          << "h8\" stroke=\"#222222\" fill=\"none\"/>\n";
       }
     }
   }
@@ -172,8 +180,9 @@ std::string svg_line_chart(const LineChart& c) {
   bool whole_x = true;  // e.g. epochs: ticks at whole numbers only
   for (const auto& s : c.series) {
     if (s.x.size() != s.y.size())
-      throw Error("chart '" + c.title + "': series '" + s.name + "' has " + std::to_string(s.x.size()) +
-                  " x and " + std::to_string(s.y.size()) + " y values");
+      throw Error("chart '" + c.title + "': series '" + s.name + "' has " +
+                  std::to_string(s.x.size()) + " x and " + std::to_string(s.y.size()) +
+                  " y values");
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       xlo = std::min(xlo, s.x[i]), xhi = std::max(xhi, s.x[i]);
@@ -187,21 +196,25 @@ std::string svg_line_chart(const LineChart& c) {
   Axis xa;
   xa.lo = xlo, xa.hi = xhi, xa.step = nice_step((xhi - xlo) / 8);
   if (whole_x) xa.step = std::max(1.0, std::floor(xa.step));
-  const Frame f{c.width, c.height, double(kLeft), double(c.width - kRight), double(kTop),
-                double(c.height - kBottom)};
+  const Frame f{c.width,       c.height,
+                double(kLeft), double(c.width - kRight),
+                double(kTop),  double(c.height - kBottom)};
   std::ostringstream o = open_svg(f, c.title);
   std::vector<std::string> names;
   for (const auto& s : c.series) names.push_back(s.name);
   legend(o, f, names, true);
   y_axis(o, f, ya, c.y_label);
-  for (double v = std::ceil(xlo / xa.step - 1e-9) * xa.step; v <= xhi + xa.step * 1e-6; v += xa.step) {
+  for (double v = std::ceil(xlo / xa.step - 1e-9) * xa.step; v <= xhi + xa.step * 1e-6;
+       v += xa.step) {
     const double x = xa.px(v, f.x0, f.x1);
-    o << "<line x1=\"" << num(x) << "\" y1=\"" << f.y1 << "\" x2=\"" << num(x) << "\" y2=\"" << f.y1 + 4
-      << "\" stroke=\"" << kAxisInk << "\"/>\n<text x=\"" << num(x) << "\" y=\"" << f.y1 + 16
-      << "\" text-anchor=\"middle\" fill=\"" << kAxisInk << "\">" << tick_text(v, xa.step) << "</text>\n";
+    o << "<line x1=\"" << num(x) << "\" y1=\"" << f.y1 << "\" x2=\"" << num(x) << "\" y2=\""
+      << f.y1 + 4 << "\" stroke=\"" << kAxisInk << "\"/>\n<text x=\"" << num(x) << "\" y=\""
+      << f.y1 + 16 << "\" text-anchor=\"middle\" fill=\"" << kAxisInk << "\">"
+      << tick_text(v, xa.step) << "</text>\n";
   }
-  o << "<text x=\"" << num((f.x0 + f.x1) / 2) << "\" y=\"" << c.height - 6 << "\" text-anchor=\"middle\" fill=\""
-    << kAxisInk << "\">" << html_escape(c.x_label) << "</text>\n";
+  o << "<text x=\"" << num((f.x0 + f.x1) / 2) << "\" y=\"" << c.height - 6
+    << "\" text-anchor=\"middle\" fill=\"" << kAxisInk << "\">" << html_escape(c.x_label)
+    << "</text>\n";
   for (std::size_t s = 0; s < c.series.size(); ++s) {
     const auto& ser = c.series[s];
     const std::string colour = chart_colour(int(s));
@@ -212,15 +225,17 @@ std::string svg_line_chart(const LineChart& c) {
         pen_down = false;
         continue;
       }
-      path += (pen_down ? "L" : "M") + num(xa.px(ser.x[i], f.x0, f.x1)) + " " + num(ya.px(ser.y[i], f.y1, f.y0));
+      path += (pen_down ? "L" : "M") + num(xa.px(ser.x[i], f.x0, f.x1)) + " " +
+              num(ya.px(ser.y[i], f.y1, f.y0));
       pen_down = true;
     }
     if (!path.empty())
-      o << "<path d=\"" << path << "\" stroke=\"" << colour << "\" stroke-width=\"2\" fill=\"none\"/>\n";
+      o << "<path d=\"" << path << "\" stroke=\"" << colour
+        << "\" stroke-width=\"2\" fill=\"none\"/>\n";
     for (std::size_t i = 0; i < ser.x.size(); ++i)
       if (std::isfinite(ser.x[i]) && std::isfinite(ser.y[i]))
-        o << "<circle cx=\"" << num(xa.px(ser.x[i], f.x0, f.x1)) << "\" cy=\"" << num(ya.px(ser.y[i], f.y1, f.y0))
-          << "\" r=\"3\" fill=\"" << colour << "\"><title>"
+        o << "<circle cx=\"" << num(xa.px(ser.x[i], f.x0, f.x1)) << "\" cy=\""
+          << num(ya.px(ser.y[i], f.y1, f.y0)) << "\" r=\"3\" fill=\"" << colour << "\"><title>"
           << html_escape(ser.name + " at " + value_text(ser.x[i]) + ": " + value_text(ser.y[i]))
           << "</title></circle>\n";
   }
