@@ -40,6 +40,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
   o.seed = c.seed;
   o.force = c.force;
   o.quiet = quiet;
+  o.progress = train_progress(o.epochs);
   const auto source = open_dataset_source(data_path);
   const TrainResult t = train(*source, model_dir, o);
 
@@ -55,6 +56,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
                 t.best_epoch, t.seconds);
   std::cout << "\n" << line << "\n\n" << e.table << "\n" << kPaperTable2Line << "\n";
   for (const auto& p : e.written) std::cout << "wrote " << p << "\n";
+  std::cout << "open " << e.page << " in a browser: the report on one page\n";
 }
 
 void run(const DemoCli& c) {

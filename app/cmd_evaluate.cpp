@@ -4,7 +4,8 @@
 //
 // Test pairs: ordered pairs of two different `original` bodies on the same
 // motion; seen = take-1 motions, unseen = take-2. Prints the Markdown table and
-// writes report/metrics.{csv,json}, qualitative.png and one GIF per category.
+// writes the report folder: index.html (one offline page: Table 2, charts,
+// figures, training curve), metrics.{csv,json}, a PNG and a GIF per category.
 #include <iostream>
 
 #include "command.hpp"
@@ -35,6 +36,7 @@ void run(const EvaluateCli& c) {
   const EvaluationResult result = run_evaluation(r);
   std::cout << result.table << "\n" << kPaperTable2Line << "\n";
   for (const auto& p : result.written) std::cout << "wrote " << p << "\n";
+  std::cout << "open " << result.page << " in a browser: the report on one page\n";
 }
 
 void setup(CLI::App& app) {

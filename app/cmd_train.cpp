@@ -77,6 +77,7 @@ void run(const TrainCli& c) {
   o.fit_contact_threshold = !c.no_contact_threshold;
   o.force = c.force;
   o.quiet = globals().quiet;
+  o.progress = train_progress(o.epochs);
   if (o.resume && !o.init.empty()) throw Error("--resume and --init exclude each other");
   auto source = open_dataset_source(c.data);
   train(*source, c.out, o);
@@ -88,10 +89,16 @@ void setup(CLI::App& app) {
       "train",
       "Train PressureTransferNet on a dataset (pairs of the same motion on two retargeted bodies,\n"
       "take-1 motions; original bodies and take-2 motions are never used) into a model folder:\n"
-      "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr.\n"
-      "Presets:\n  paper = the paper's: " + TrainOptions::from_preset("paper").summary() +
-      "\n  fast  = ours: " + TrainOptions::from_preset("fast").summary() +
-      "\nOptions left out keep the preset's value.");
+      "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr
+"
+      "(on a terminal also a progress line inside each epoch: windows, windows/s, ETA).
+"
+      "Presets:
+  paper = the paper's: " + TrainOptions::from_preset("paper").summary() +
+      "
+  fast  = ours: " + TrainOptions::from_preset("fast").summary() +
+      "
+Options left out keep the preset's value.");
   cmd->add_option("--data", opt->data, "Dataset file (HDF5, ptnet simulate)")->required();
   cmd->add_option("--out", opt->out, "Model folder to create")->required();
   cmd->add_option("--preset", opt->preset, "paper | fast")->capture_default_str();

@@ -1,7 +1,7 @@
 // ptnet validate-har: does transferred data help an activity classifier?
 // (paper section 4.2, Table 3; docs/har.md). Thin glue over ptnet/har.hpp
 // and ptnet/transfer.hpp.
-#if defined(PTNET_HAR_EXPERIMENT) && defined(PTNET_HAR_TRANSFER)
+#if defined(PTNET_HAR_EXPERIMENT) && defined(PTNET_HAR_TRANSFER) && defined(PTNET_HAR_HTML)
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -54,9 +54,11 @@ void write_outputs(const ValidateHarOptions& o, const ptnet::har::HarResult& r,
   if (ec) throw ptnet::Error::in(o.out, "cannot create folder: " + ec.message());
   ptnet::write_text_file(json_path, ptnet::har::to_json(r), o.force);
   ptnet::har::write_confusion_png(png_path, r, o.force);
+  const std::string page = ptnet::har::write_html_report(o.out, r, o.force).back();
   std::cout << ptnet::har::format_table(r);
   if (!ptnet::cli::globals().quiet)
-    std::cerr << "validate-har: wrote " << json_path << " and " << png_path << "\n";
+    std::cerr << "validate-har: wrote " << json_path << ", " << png_path << " and " << page << "\n";
+  std::cout << "open " << page << " in a browser: the report on one page\n";
 }
 
 void run(const ValidateHarOptions& o) {
@@ -90,7 +92,8 @@ void run(const ValidateHarOptions& o) {
     throw ptnet::Error::in(o.out, "exists and is not a folder");
   const std::string json_path = (fs::path(o.out) / "results.json").string();
   const std::string png_path = (fs::path(o.out) / "confusion.png").string();
-  for (const auto& p : {json_path, png_path})
+  const std::string page_path = (fs::path(o.out) / "index.html").string();
+  for (const auto& p : {json_path, png_path, page_path})
     if (fs::exists(p, ec) && !o.force) throw ptnet::Error::in(p, "exists; pass --force to overwrite");
 
   ptnet::Dataset real = ptnet::Dataset::open(o.real);
@@ -201,7 +204,7 @@ void setup(CLI::App& app) {
       ->check(CLI::Range(1, 256));
   c->add_flag("--no-categories", o->no_categories,
               "Skip the classifiers trained on the dataset's category labels");
-  c->add_option("--out", o->out, "Output folder (results.json, confusion.png)")
+  c->add_option("--out", o->out, "Output folder (results.json, confusion.png, index.html)")
       ->capture_default_str();
   c->add_flag("--force", o->force, "Overwrite existing outputs");
   c->callback([o] { run(*o); });

@@ -9,7 +9,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,15 +39,93 @@ struct Globals {
 };
 Globals& globals();
 
-// Progress of long work on stderr ("evaluate: 40/480 pairs"): one updating
-// line on a terminal, a line per 10 % in a log, nothing with --quiet.
-inline void print_progress(const std::string& what, int done, int total, const std::string& unit) {
+// "3 min 05 s", "1 h 02 min", "12 s": a duration for progress lines.
+inline std::string format_duration(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  char buf[48];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ld h %02ld min", s / 3600, s / 60 % 60);
+  else if (s >= 60) std::snprintf(buf, sizeof buf, "%ld min %02ld s", s / 60, s % 60);
+  else std::snprintf(buf, sizeof buf, "%ld s", s);
+  return buf;
+}
+
+// Progress of long work on stderr, the one printer of every command:
+//   evaluate: 40/480 pairs, 2.3 pairs/s, ETA 3 min 12 s
+// On a terminal one line rewritten in place (at most 10 times a second); in a
+// log a line per 10 %; nothing with --quiet. A new `what`, or a count going
+// back, starts a new clock (rate and ETA are measured from the first call).
+// `extra` is appended. A `transient` line (training inside an epoch) shows on
+// a terminal only and is erased when done == total: the caller then logs its
+// own line.
+inline void print_progress(const std::string& what, long long done, long long total, const std::string& unit,
+                           const std::string& extra = "", bool transient = false) {
+  using Clock = std::chrono::steady_clock;
+  struct State {
+    std::string what;
+    long long first = 0, last = -1;
+    Clock::time_point start, printed;
+  };
+  static State st;
   if (globals().quiet) return;
   static const bool tty = ::isatty(2) != 0;
-  const int step = std::max(1, total / (tty ? 100 : 10));
-  if (done % step == 0 || done == total)
-    std::cerr << what << ": " << done << "/" << total << " " << unit << (done == total || !tty ? "\n" : "\r")
-              << std::flush;
+  if (transient && !tty) return;
+  const auto now = Clock::now();
+  if (what != st.what || done < st.last) st = State{what, done, -1, now, now - std::chrono::seconds(1)};
+  const long long previous = st.last;
+  st.last = done;
+  const bool end = done >= total;
+  const bool due = tty ? std::chrono::duration<double>(now - st.printed).count() >= 0.1
+                       : total > 0 && done * 10 / total > std::max(0LL, previous) * 10 / total;
+  if (!end && !due) return;
+  st.printed = now;
+  if (end && transient) {
+    std::cerr << "\r\033[K" << std::flush;
+    return;
+  }
+  std::string line = what + ": " + std::to_string(done) + "/" + std::to_string(total) + " " + unit;
+  const double secs = std::chrono::duration<double>(now - st.start).count();
+  if (done > st.first && secs > 0.2) {
+    const double rate = double(done - st.first) / secs;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, rate >= 100 ? "%.0f" : "%.1f", rate);
+    line += std::string(", ") + buf + " " + unit + "/s";
+    if (!end) line += ", ETA " + format_duration(double(total - done) / rate);
+  }
+  if (!extra.empty()) line += ", " + extra;
+  std::cerr << (tty ? "\r\033[K" : "") << line << (end || !tty ? "\n" : "") << std::flush;
+}
+
+// TrainOptions::progress for `ptnet train` and `ptnet demo`: inside each epoch
+// "epoch 3/15: 1024/4096 windows, 512 windows/s, ETA 6 s, run ETA 1 min 40 s"
+// on a terminal (transient; a log keeps the library's one line per epoch).
+// The run's ETA counts the remaining epochs at the last whole epoch's wall
+// time (validation included); early stopping may end the run sooner.
+inline std::function<void(int, std::int64_t, std::int64_t)> train_progress(int epochs) {
+  struct EpochClock {
+    int epoch = 0;
+    std::chrono::steady_clock::time_point start;
+    double last_epoch_s = 0;  // wall time of the last whole epoch
+  };
+  auto clock = std::make_shared<EpochClock>();
+  return [clock, epochs](int epoch, std::int64_t done, std::int64_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (epoch != clock->epoch) {
+      if (clock->epoch > 0) clock->last_epoch_s = std::chrono::duration<double>(now - clock->start).count();
+      clock->epoch = epoch;
+      clock->start = now;
+    }
+    const double in_epoch = std::chrono::duration<double>(now - clock->start).count();
+    const double epoch_s = clock->last_epoch_s > 0 ? clock->last_epoch_s
+                           : done > 0            ? in_epoch * double(total) / double(done)
+                                                 : 0;
+    std::string extra;
+    if (epoch_s > 0 && epoch < epochs) {
+      const double this_epoch_left = std::max(0.0, epoch_s - in_epoch);
+      extra = "run ETA " + format_duration(this_epoch_left + epoch_s * double(epochs - epoch));
+    }
+    print_progress("epoch " + std::to_string(epoch) + "/" + std::to_string(epochs), done, total, "windows", extra,
+                   /*transient=*/true);
+  };
 }
 
 }  // namespace ptnet::cli

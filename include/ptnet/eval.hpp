@@ -158,16 +158,21 @@ namespace ptnet {
 struct ReportOptions {
   std::string out_dir = "report";  // created if missing
   bool force = false;              // overwrite existing report files
-  int frames_per_category = 6;     // frames in qualitative.png per category
+  int frames_per_category = 5;     // frames in each qualitative_<category>.png
   double threshold_kpa = 0.5;      // recorded in metrics.json
+  std::string model_dir;           // the model's history.csv and config.json on the page ("": none)
 };
 
 // Writes into out_dir (each file atomically): metrics.csv (one row per pair,
 // sequence and method), metrics.json (group means in the Table 2 layout, the
-// paper's figures beside them, settings), qualitative.png (per category, rows
-// source / ground truth / transferred / |error|) and qualitative_<category>.gif.
-// The figures use one seen pair per category (the first in test_pairs order),
-// transferred again with `model`. Returns the paths written.
+// paper's figures beside them, settings), per category qualitative_<category>.png
+// (rows source / ground truth / transferred / |error|) and .gif, worst_<n>.png
+// (the 5 pairs with the highest model RMSE), and index.html: one offline page
+// with Table 2 (every method in the rows beside the paper's figures), SVG bar
+// charts (chart_*.svg), the figures, and the training curve
+// (training_curve.svg) and config of options.model_dir. The category figures
+// use one seen pair per category (the first in test_pairs order); every figure
+// is transferred again with `model`. Returns the paths written.
 std::vector<std::string> write_report(const Dataset& dataset, const std::vector<EvalRow>& rows,
                                       const TransferFn& model, const ReportOptions& options);
 
@@ -192,6 +197,7 @@ struct EvaluationResult {
   std::vector<EvalRow> rows;
   std::string table;                   // format_table(rows)
   std::vector<std::string> written;    // report files
+  std::string page;                    // the report page, out_dir/index.html
 };
 EvaluationResult run_evaluation(const EvaluationRun& run);
 

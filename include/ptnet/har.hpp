@@ -297,6 +297,8 @@ HarResult validate_har(const Dataset& real, const TransferFn& transfer, const Ha
 // column per training source) plus accuracy and per-class F1.
 std::string format_table(const HarResult& result);
 std::string to_json(const HarResult& result);  // pretty-printed JSON text
+// A training source as Table 3 names it: "Real", "Synthetic", "Real+Synthetic".
+std::string source_title(const std::string& source);
 
 // ---------------------------------------------------------------- stand-in
 
@@ -383,5 +385,13 @@ void write_finetune_set(const std::string& real, const std::vector<std::string>&
 // Confusion matrices side by side, one per training source, rows normalised
 // (white = 0, dark blue = 1), with class indices; written atomically.
 void write_confusion_png(const std::string& path, const HarResult& result, bool force);
+
+// har/index.html, one offline page: Table 3 (macro F1 mean +- sample std over
+// runs per training source, per-run values, accuracy), a bar chart with the
+// spread (f1.svg), the confusion matrices as shaded tables (rows = true label,
+// row-normalised shading, summed counts) beside confusion.png (written by
+// write_confusion_png into the same folder), per-class F1 and the settings.
+// Writes index.html and f1.svg into out_dir; returns the paths written.
+std::vector<std::string> write_html_report(const std::string& out_dir, const HarResult& result, bool force);
 
 }  // namespace ptnet::har

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -192,7 +193,10 @@ struct TrainOptions {
   std::string init;                 // start from this model folder's weights
   bool identity_pairs = false;      // WindowOptions::identity_pairs (fine-tuning on recordings)
   bool force = false;               // overwrite an existing model folder
-  bool quiet = false;               // no progress on stderr
+  bool quiet = false;               // no per-epoch lines on stderr
+  // Called after each optimiser step with (epoch (1-based), training windows
+  // done in this epoch, windows in the epoch); the library prints nothing itself.
+  std::function<void(int, std::int64_t, std::int64_t)> progress;
 
   // "paper": the paper's network (faithful, no alignment), batch 1028, lr
   // 0.01 halved every 20 epochs, 500 epochs, patience 50, widths

@@ -101,4 +101,49 @@ Image render_colour_bar(double vmax_kpa, int bar_height_px, int text_scale);
 void render_figure(const Dataset& dataset, const std::vector<std::string>& sequences,
                    const std::string& out_path, const FigureOptions& options, bool force);
 
+// ------------------------------------------------------- SVG charts, HTML
+//
+// Charts are standalone SVG documents (width and height set, so an <img>
+// shows them; text escaped). Report pages are offline HTML: no script or
+// style from the network, images beside the page.
+
+// The tick step of an axis: 1, 2, 2.5 or 5 x 10^k, the smallest >= raw.
+double nice_step(double raw);
+
+struct BarSeries {
+  std::string name;            // legend entry
+  std::vector<double> values;  // one per group; NaN = no bar
+  std::vector<double> errors;  // +- whisker per group (empty: none)
+};
+struct BarChart {
+  std::string title, y_label;
+  std::vector<std::string> groups;  // along x
+  std::vector<BarSeries> series;    // bars side by side within a group, one colour each
+  int width = 640, height = 300;    // px
+};
+std::string svg_bar_chart(const BarChart& chart);
+
+struct LineSeries {
+  std::string name;
+  std::vector<double> x, y;  // same length; NaN y = gap
+};
+struct LineChart {
+  std::string title, x_label, y_label;
+  std::vector<LineSeries> series;
+  int width = 640, height = 300;
+};
+std::string svg_line_chart(const LineChart& chart);
+
+// The colour of series i in every chart (a qualitative palette, cycling), as "#rrggbb".
+std::string chart_colour(int i);
+
+// &, <, >, " and ' as entities: safe in HTML and SVG text and attributes.
+std::string html_escape(const std::string& text);
+
+// A complete page: inline style, `body_html` as given, and an inline check
+// script: on load, document.body.dataset.ok becomes "yes" when every <img>
+// loaded (naturalWidth > 0) and no script or resource error occurred, else
+// "no", with the failures listed in data-failures (the browser test reads them).
+std::string html_page(const std::string& title, const std::string& body_html);
+
 }  // namespace ptnet

@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "html_report.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
@@ -13,10 +14,8 @@
 
 namespace ptnet {
 namespace fs = std::filesystem;
-namespace {
 
-// The paper's Table 2 (RMSE, binary R^2), for metrics.json.
-nlohmann::json paper_table() {
+nlohmann::json paper_table2() {
   return {{"seen",
            {{"walking", {8.72, 0.81}}, {"rom", {9.21, 0.78}}, {"freestyle", {8.93, 0.80}},
             {"acting", {9.67, 0.76}}, {"average", {8.88, 0.79}}}},
@@ -25,11 +24,16 @@ nlohmann::json paper_table() {
             {"acting", {12.73, 0.69}}, {"average", {12.82, 0.70}}}}};
 }
 
+namespace {
+
 nlohmann::json metrics_json(const SequenceMetrics& m) {
   return {{"rmse_kpa", m.rmse_kpa},         {"binary_r2", m.binary_r2},
           {"cop_error_cm", m.cop_error_cm}, {"force_error_pct", m.force_error_pct},
           {"contact_iou", m.contact_iou}};
 }
+
+constexpr int kStillCellPx = 4;  // px per mat cell in the stills: a category's figure ~1070 x 1640 px
+constexpr int kWorstPairs = 5;   // worst pairs (model RMSE) with figures on the page
 
 std::string body_label(const BodySpec& b) {
   char buf[96];
@@ -43,20 +47,55 @@ PressureSequence absolute_error(const PressureSequence& a, const PressureSequenc
   return e;
 }
 
-// Stacks images vertically on the page colour.
-Image stack(const std::vector<Image>& parts) {
-  int w = 0, h = 0;
-  for (const auto& p : parts) {
-    w = std::max(w, p.width);
-    h += p.height;
+// The `count` frames with the largest summed |error|, at least T / (2 count)
+// frames apart, in time order.
+std::vector<int> worst_frames(const PressureSequence& err, int count) {
+  const int t_count = err.frames(), cells = err.mat.cells();
+  std::vector<std::pair<double, int>> by_error;
+  for (int t = 0; t < t_count; ++t) {
+    double sum = 0;
+    for (int i = 0; i < cells; ++i) sum += err.kpa[std::size_t(t) * cells + i];
+    by_error.emplace_back(-sum, t);
   }
-  Image out(w, h);
-  int y = 0;
-  for (const auto& p : parts) {
-    out.blit(p, 0, y);
-    y += p.height;
+  std::sort(by_error.begin(), by_error.end());
+  const int gap = std::max(1, t_count / (2 * std::max(1, count)));
+  std::vector<int> picked;
+  for (const auto& [neg, t] : by_error) {
+    if (int(picked.size()) == count) break;
+    if (std::all_of(picked.begin(), picked.end(), [&](int p) { return std::abs(p - t) >= gap; })) picked.push_back(t);
   }
-  return out;
+  std::sort(picked.begin(), picked.end());
+  return picked;
+}
+
+// Source / ground truth / transferred / |error| of one pair, transferred
+// again with `model`; `still` and `gif` (when not empty) name the files. The
+// still shows `frames` evenly spaced frames, or the worst ones (worst_frames).
+void write_pair_figure(const Dataset& dataset, const TestPair& pair, const TransferFn& model,
+                       const std::string& still, const std::string& gif, int frames, bool worst, bool force) {
+  const PairData data = load_pair(dataset, pair);
+  const PressureSequence out = model(data.source, data.source_body, data.target_body);
+  const PressureSequence err = absolute_error(out, data.truth);
+  const std::string tag = pair.category + (pair.take == 1 ? " (seen) " : " (unseen) ");
+  const std::vector<FigurePanel> panels{{tag + "source", body_label(data.source_body), &data.source},
+                                        {tag + "ground truth", body_label(data.target_body), &data.truth},
+                                        {tag + "transferred", body_label(data.target_body), &out},
+                                        {tag + "|error|", "same kPa scale", &err}};
+  FigureOptions fo;
+  fo.frames = frames;
+  if (worst) fo.frame_list = worst_frames(err, frames);
+  fo.cell_px = kStillCellPx;
+  write_png(still, render_strip(panels, fo), force);
+  if (gif.empty()) return;
+  FigureOptions go;
+  go.frames = std::min(data.truth.frames(), 150);  // about 5 s at 30 Hz keeps the GIF small
+  std::vector<int> delays;
+  const auto animation = render_animation(panels, go, &delays);
+  write_gif(gif, animation, delays, force);
+}
+
+TestPair pair_of(const EvalRow& r) {
+  return TestPair{r.motion_id, r.category, r.take, r.source_sequence, r.target_sequence};
 }
 
 }  // namespace
@@ -69,7 +108,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
     throw Error::in(options.out_dir, "cannot create the report folder");
   const auto path = [&](const std::string& name) { return (fs::path(options.out_dir) / name).string(); };
   // Refuse before writing anything, so a refused run leaves no partial report.
-  std::vector<std::string> names{"metrics.csv", "metrics.json", "qualitative.png"};
+  std::vector<std::string> names{"metrics.csv", "metrics.json", "index.html"};
   for (const auto& name : names) check_output_path(path(name), options.force);
 
   std::vector<std::string> written;
@@ -83,7 +122,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
   const bool floor = std::any_of(rows.begin(), rows.end(), [](const EvalRow& r) { return r.method == "floor"; });
   j["noise_floor"] = floor ? "groups.*.*.floor: the truth simulated again with another sensor seed" : kNoFloorNote;
   j["definitions"] = "see include/ptnet/eval.hpp and docs/results.md";
-  j["paper_table2"] = paper_table();
+  j["paper_table2"] = paper_table2();
   for (const auto& g : summarise(rows)) {
     nlohmann::json m = metrics_json(g.mean);
     m["rows"] = g.rows;
@@ -98,41 +137,36 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
     auto it = chosen.find(p.category);
     if (it == chosen.end() || (it->second.take != 1 && p.take == 1)) chosen[p.category] = p;
   }
-  std::vector<Image> strips;
+  const auto model_row = [&](const TestPair& p) {
+    for (const auto& r : rows)
+      if (r.method == "model" && r.source_sequence == p.source_sequence && r.target_sequence == p.target_sequence)
+        return r;
+    EvalRow r;  // a pair the rows do not hold: caption without metrics
+    r.method = "model", r.motion_id = p.motion_id, r.category = p.category, r.take = p.take;
+    r.source_sequence = p.source_sequence, r.target_sequence = p.target_sequence;
+    return r;
+  };
+  std::vector<PairFigure> categories;
   for (const char* category : {"walking", "rom", "freestyle", "acting"}) {
     auto it = chosen.find(category);
     if (it == chosen.end()) continue;
-    const TestPair& p = it->second;
-    const PairData data = load_pair(dataset, p);
-    const PressureSequence& source = data.source;
-    const PressureSequence& truth = data.truth;
-    const BodySpec& sb = data.source_body;
-    const BodySpec& tb = data.target_body;
-    const int frames = truth.frames();
-    const PressureSequence out = model(source, sb, tb);
-    const PressureSequence err = absolute_error(out, truth);
-    const std::string tag = std::string(category) + (p.take == 1 ? " (seen) " : " (unseen) ");
-    std::vector<FigurePanel> panels{
-        {tag + "source", body_label(sb), &source},
-        {tag + "ground truth", body_label(tb), &truth},
-        {tag + "transferred", body_label(tb), &out},
-        {tag + "|error|", "same kPa scale", &err}};
-    FigureOptions fo;
-    fo.frames = options.frames_per_category;
-    strips.push_back(render_strip(panels, fo));
-
-    FigureOptions go;
-    go.frames = std::min(frames, 150);  // about 5 s at 30 Hz keeps the GIF small
-    std::vector<int> delays;
-    const auto animation = render_animation(panels, go, &delays);
-    const std::string gif = path(std::string("qualitative_") + category + ".gif");
-    write_gif(gif, animation, delays, options.force);
-    written.push_back(gif);
+    const std::string png = std::string("qualitative_") + category + ".png";
+    const std::string gif = std::string("qualitative_") + category + ".gif";
+    write_pair_figure(dataset, it->second, model, path(png), path(gif), options.frames_per_category,
+                      /*worst=*/false, options.force);
+    written.push_back(path(png));
+    written.push_back(path(gif));
+    categories.push_back({model_row(it->second), png, gif});
   }
-  if (!strips.empty()) {
-    write_png(path("qualitative.png"), stack(strips), options.force);
-    written.push_back(path("qualitative.png"));
+  std::vector<PairFigure> worst;
+  for (const EvalRow& r : worst_pairs(rows, kWorstPairs)) {
+    const std::string png = "worst_" + std::to_string(worst.size() + 1) + ".png";
+    write_pair_figure(dataset, pair_of(r), model, path(png), "", options.frames_per_category, /*worst=*/true,
+                      options.force);
+    written.push_back(path(png));
+    worst.push_back({r, png, ""});
   }
+  for (const auto& p : write_report_html(rows, categories, worst, dataset.path(), options)) written.push_back(p);
   return written;
 }
 

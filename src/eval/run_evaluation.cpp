@@ -1,4 +1,6 @@
 // The whole evaluate step: model, test pairs, table, report (eval.hpp).
+#include <filesystem>
+
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
@@ -26,7 +28,9 @@ EvaluationResult run_evaluation(const EvaluationRun& run) {
   ro.out_dir = run.out_dir;
   ro.force = run.force;
   ro.threshold_kpa = run.threshold_kpa;
+  ro.model_dir = run.model_dir;
   result.written = write_report(dataset, result.rows, model, ro);
+  result.page = (std::filesystem::path(run.out_dir) / "index.html").string();
   result.table = format_table(result.rows);
   return result;
 }

@@ -40,6 +40,10 @@ nlohmann::json matrix(const Eigen::MatrixXi& m) {
 
 }  // namespace
 
+std::string source_title(const std::string& source) {
+  return source == "real" ? "Real" : source == "synthetic" ? "Synthetic" : "Real+Synthetic";
+}
+
 std::string format_table(const HarResult& r) {
   std::ostringstream o;
   o << "HAR validation of " << r.dataset << ": train subjects " << join(r.train_subjects) << " ("
@@ -57,10 +61,7 @@ std::string format_table(const HarResult& r) {
   o << ")\n\n";
   const std::size_t w0 = 32, w = 17;
   o << pad("Training dataset source", w0);
-  for (const auto& s : r.sources) o << "| " << pad(s.source == "real"        ? "Real"
-                                                   : s.source == "synthetic" ? "Synthetic"
-                                                                             : "Real+Synthetic",
-                                                   w);
+  for (const auto& s : r.sources) o << "| " << pad(source_title(s.source), w);
   o << "\n" << std::string(w0, '-');
   for (std::size_t i = 0; i < r.sources.size(); ++i) o << "+" << std::string(w + 1, '-');
   o << "\n" << pad("Macro F1 score (pseudo labels)", w0);

@@ -526,6 +526,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       optimizer.step();
       loss_sum += l * double(refs.size());
       seen += std::int64_t(refs.size());
+      if (o.progress) o.progress(e + 1, seen, std::int64_t(order.size()));
     }
     const double train_loss = loss_sum / double(seen);
     const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, false);

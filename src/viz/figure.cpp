@@ -14,6 +14,15 @@
 
 namespace ptnet {
 
+// 1, 2, 2.5 or 5 x 10^k, the smallest such step >= raw.
+double nice_step(double raw) {
+  if (!(raw > 0)) return 1;
+  double p = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * p >= raw * (1 - 1e-9)) return m * p;
+  return 10 * p;
+}
+
 namespace {
 constexpr int kMargin = 24;        // page margin (px)
 constexpr int kText = 2;           // text scale: 12 x 16 px glyph cells
@@ -31,15 +40,6 @@ std::string format(const char* f, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
-}
-
-// 1, 2, 2.5 or 5 x 10^k, the smallest such step >= raw.
-double nice_step(double raw) {
-  if (!(raw > 0)) return 1;
-  double p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
-    if (m * p >= raw * (1 - 1e-9)) return m * p;
-  return 10 * p;
 }
 
 std::string tick_label(double v, double step) {
