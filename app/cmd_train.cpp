@@ -89,16 +89,11 @@ void setup(CLI::App& app) {
       "train",
       "Train PressureTransferNet on a dataset (pairs of the same motion on two retargeted bodies,\n"
       "take-1 motions; original bodies and take-2 motions are never used) into a model folder:\n"
-      "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr
-"
-      "(on a terminal also a progress line inside each epoch: windows, windows/s, ETA).
-"
-      "Presets:
-  paper = the paper's: " + TrainOptions::from_preset("paper").summary() +
-      "
-  fast  = ours: " + TrainOptions::from_preset("fast").summary() +
-      "
-Options left out keep the preset's value.");
+      "config.json, model.pt (best weights), checkpoint.pt, history.csv. One line per epoch on stderr\n"
+      "(on a terminal also a progress line inside each epoch: windows, windows/s, ETA).\n"
+      "Presets:\n  paper = the paper's: " + TrainOptions::from_preset("paper").summary() +
+      "\n  fast  = ours: " + TrainOptions::from_preset("fast").summary() +
+      "\nOptions left out keep the preset's value.");
   cmd->add_option("--data", opt->data, "Dataset file (HDF5, ptnet simulate)")->required();
   cmd->add_option("--out", opt->out, "Model folder to create")->required();
   cmd->add_option("--preset", opt->preset, "paper | fast")->capture_default_str();
