@@ -68,7 +68,8 @@ void run(const TrainCli& c) {
   if (!c.loss.empty()) {
     if (c.loss == "mse") o.loss = Loss::mse;
     else if (c.loss == "mse+force") o.loss = Loss::mse_force;
-    else throw Error("--loss: expected mse or mse+force, found \"" + c.loss + "\"");
+    else if (c.loss == "mse+edges") o.loss = Loss::mse_edges;
+    else throw Error("--loss: expected mse, mse+force or mse+edges, found \"" + c.loss + "\"");
   }
   o.device = c.device;
   o.init = c.init;
@@ -123,7 +124,7 @@ void setup(CLI::App& app) {
   cmd->add_option("--context", opt->context, "--arch frame: neighbouring frames on each side as input (0)");
   cmd->add_option("--crop-rows", opt->crop_rows,
                   "--arch frame: train on this many mat rows around the pressure (0 = whole mat)");
-  cmd->add_option("--loss", opt->loss, "mse (the paper's content loss) | mse+force (adds total-force error)");
+  cmd->add_option("--loss", opt->loss, "mse (the paper's content loss) | mse+force (adds total-force error) | mse+edges (contact-boundary cells weigh 5x)");
   cmd->add_option("--cache-mb", opt->cache_mb, "Budget of the whole-sequence cache (default 1024)");
   cmd->add_flag("--no-contact-threshold", opt->no_contact_threshold,
                 "Do not fit the output activation threshold (raw network output, as in the paper)");

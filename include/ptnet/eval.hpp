@@ -69,7 +69,7 @@ PressureSequence body_scale_baseline(const PressureSequence& source, const BodyS
 
 // One evaluated (source -> target) pair on one motion, for one method.
 struct EvalRow {
-  std::string method;    // "model", "copy", "weight_ratio", "body_scale", "floor"
+  std::string method;    // "model", "model_raw", "copy", "weight_ratio", "body_scale", "floor", "floor"
   std::string motion_id;
   std::string category;  // walking | rom | freestyle | acting
   int take = 1;          // 1 = seen motion, 2 = unseen
@@ -119,6 +119,10 @@ struct EvaluateOptions {
   MetricOptions metrics;
   // Called after each pair with (pairs done, pairs total).
   std::function<void(int, int)> progress;
+  // > 0: the model function returns its raw output, evaluated as "model_raw",
+  // and "model" is that output with cells below this threshold (kPa) set to 0
+  // (the model's fitted contact threshold): both from one transfer.
+  double model_threshold_kpa = 0;
 };
 
 // One test pair: the same motion on two different `original` bodies.

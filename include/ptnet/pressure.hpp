@@ -42,6 +42,13 @@ struct PressureSequence {
   float at(int t, int r, int c) const { return frame(t)[r * mat.cols + c]; }
 };
 
+// An activation threshold: cells below `kpa` set to 0 (a trained model's
+// fitted contact threshold, ModelDir::norm.contact_threshold_kpa).
+inline void zero_below(PressureSequence& s, double kpa) {
+  for (float& v : s.kpa)
+    if (v < kpa) v = 0.0f;
+}
+
 // Body-scale alignment of pressure maps from one body to another, for
 // retargeted motion: the same motion on a body `scale` times as tall lands
 // `scale` times as far from the centre of the mat (the sequence is centred on

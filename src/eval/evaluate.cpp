@@ -57,7 +57,15 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
     const int frames = truth.frames();
 
     std::vector<std::pair<std::string, PressureSequence>> predictions;
-    predictions.emplace_back("model", model(source, src_body, dst_body));
+    PressureSequence raw = model(source, src_body, dst_body);
+    if (options.model_threshold_kpa > 0) {
+      PressureSequence thresholded = raw;
+      zero_below(thresholded, options.model_threshold_kpa);
+      predictions.emplace_back("model", std::move(thresholded));
+      predictions.emplace_back("model_raw", std::move(raw));
+    } else {
+      predictions.emplace_back("model", std::move(raw));
+    }
     predictions.emplace_back("copy", copy_baseline(source));
     predictions.emplace_back("weight_ratio", weight_ratio_baseline(source, src_body.weight_kg, dst_body.weight_kg));
     predictions.emplace_back("body_scale", body_scale_baseline(source, src_body, dst_body));

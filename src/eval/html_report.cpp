@@ -33,6 +33,7 @@ const char* split_name(bool seen) { return seen ? "seen" : "unseen"; }
 // What each known method is; others are shown by their name.
 std::string method_label(const std::string& m) {
   if (m == "model") return "model";
+  if (m == "model_raw") return "model (raw)";
   if (m == "copy") return "copy";
   if (m == "weight_ratio") return "weight ratio";
   if (m == "body_scale") return "body scale";
@@ -40,7 +41,8 @@ std::string method_label(const std::string& m) {
   return m;
 }
 std::string method_note(const std::string& m) {
-  if (m == "model") return "the trained network (this report's model folder)";
+  if (m == "model") return "the trained network (this report's model folder), its fitted contact threshold applied";
+  if (m == "model_raw") return "the same network's raw output, without the contact threshold";
   if (m == "copy") return "baseline: the source sequence unchanged";
   if (m == "weight_ratio") return "baseline: the source scaled by the target/source weight ratio";
   if (m == "body_scale")

@@ -14,16 +14,23 @@ EvaluationResult run_evaluation(const EvaluationRun& run) {
   TransferOptions to;
   to.stride = run.stride;
   to.threads = run.threads;
-  to.raw = run.raw;
+  to.raw = true;  // the fitted threshold is applied below: raw and thresholded from one transfer
   const Transfer net(run.model_dir, to);
-  const TransferFn model = [&](const PressureSequence& s, const BodySpec& a, const BodySpec& b) {
+  const double threshold = run.raw ? 0.0 : net.model().norm.contact_threshold_kpa;
+  const TransferFn raw_model = [&](const PressureSequence& s, const BodySpec& a, const BodySpec& b) {
     return net.run(s, a, b);
+  };
+  const TransferFn model = [&](const PressureSequence& s, const BodySpec& a, const BodySpec& b) {
+    PressureSequence out = net.run(s, a, b);
+    zero_below(out, threshold);
+    return out;
   };
   EvaluateOptions eo;
   eo.metrics.threshold_kpa = run.threshold_kpa;
   eo.progress = run.progress;
+  eo.model_threshold_kpa = threshold;
   EvaluationResult result;
-  result.rows = evaluate_pairs(dataset, model, eo);
+  result.rows = evaluate_pairs(dataset, raw_model, eo);
   ReportOptions ro;
   ro.out_dir = run.out_dir;
   ro.force = run.force;

@@ -12,7 +12,7 @@ namespace ptnet {
 namespace {
 
 const std::vector<std::string> kCategoryOrder{"walking", "rom", "freestyle", "acting"};
-const std::vector<std::string> kMethodOrder{"model", "copy", "weight_ratio", "body_scale", "floor"};
+const std::vector<std::string> kMethodOrder{"model", "model_raw", "copy", "weight_ratio", "body_scale", "floor"};
 
 void accumulate(SequenceMetrics& sum, const SequenceMetrics& m) {
   sum.rmse_kpa += m.rmse_kpa;

@@ -89,10 +89,9 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
     }
   }
   auto out_t = (sum / cover.view({t, 1, 1}) * float(d.norm.pressure_scale_kpa)).contiguous();
-  if (!impl_->options.raw && d.norm.contact_threshold_kpa > 0)
-    out_t.masked_fill_(out_t < float(d.norm.contact_threshold_kpa), 0.0f);  // the fitted activation threshold
   PressureSequence out(src.mat, t, src.fps);
   std::copy(out_t.data_ptr<float>(), out_t.data_ptr<float>() + out.kpa.size(), out.kpa.begin());
+  if (!impl_->options.raw && d.norm.contact_threshold_kpa > 0) zero_below(out, d.norm.contact_threshold_kpa);
   return out;
 }
 
