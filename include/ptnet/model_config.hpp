@@ -76,6 +76,8 @@ struct ModelConfig {
   int hidden = kHidden;                    // FC after the flattened conv features
   int latent = kLatent;                    // FC after concatenating the source attributes
   int context = 0;                         // Arch::frame: neighbouring frames on each side as input
+  bool frame_globals = true;               // Arch::frame: FiLM also sees the frame's total pressure
+                                           // and loaded share (kFrameGlobals), not only the attributes
   static ModelConfig paper() { return {}; }
   static ModelConfig fast() {
     ModelConfig c;

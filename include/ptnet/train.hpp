@@ -164,9 +164,7 @@ class SequenceCache {
 
 // ---------------------------------------------------------------- training
 
-// mse_force adds a per-frame total-force term; mse_edges weighs the cells on
-// the truth's contact boundary more (edge_weight).
-enum class Loss { mse, mse_force, mse_edges };
+enum class Loss { mse, mse_force };  // mse_force adds a per-frame total-force term
 
 struct TrainOptions {
   std::string preset = "paper";     // paper | fast (set by from_preset())
@@ -187,7 +185,6 @@ struct TrainOptions {
   std::int64_t val_samples = 0;     // validation windows, evenly spaced (0 = all)
   Loss loss = Loss::mse;
   double force_weight = 0.1;        // weight of the total-force term (Loss::mse_force)
-  double edge_weight = 4;           // extra weight of contact-boundary cells (Loss::mse_edges)
   double cache_mb = 1024;           // whole-sequence cache budget
   int crop_rows = 0;                // Arch::frame: train on this many mat rows around the window's
                                     // pressure (0 = the whole mat); validation uses the whole mat

@@ -70,9 +70,7 @@ std::string TrainOptions::summary() const {
 
 namespace {
 
-const char* loss_name(Loss l) {
-  return l == Loss::mse_force ? "mse+force" : l == Loss::mse_edges ? "mse+edges" : "mse";
-}
+const char* loss_name(Loss l) { return l == Loss::mse_force ? "mse+force" : "mse"; }
 
 json options_json(const TrainOptions& o) {
   return json{{"preset", o.preset},        {"epochs", o.epochs},
@@ -82,7 +80,7 @@ json options_json(const TrainOptions& o) {
               {"seed", o.seed},            {"threads", o.threads},
               {"device", o.device},        {"stride", o.stride},
               {"samples_per_epoch", o.samples_per_epoch}, {"val_samples", o.val_samples},
-              {"loss", loss_name(o.loss)}, {"force_weight", o.force_weight}, {"edge_weight", o.edge_weight},
+              {"loss", loss_name(o.loss)}, {"force_weight", o.force_weight},
               {"init", o.init},            {"val_fraction", 0.1},
               {"fit_contact_threshold", o.fit_contact_threshold},
               {"identity_pairs", o.identity_pairs}, {"crop_rows", o.crop_rows}};
@@ -225,16 +223,6 @@ void crop_to_pressure(Batch& b, int rows) {
 torch::Tensor loss_fn(const TrainOptions& o, const torch::Tensor& raw, const torch::Tensor& truth) {
   auto out = torch::where(truth > 0, raw, torch::relu(raw));
   auto loss = torch::mse_loss(out, truth);
-  if (o.loss == Loss::mse_edges) {
-    // Cells on the truth's contact boundary (dilation minus erosion of the
-    // loaded cells, 3 x 3) weigh 1 + edge_weight: where binary R^2 is decided.
-    const auto sizes = truth.sizes();
-    auto c = (truth > 0).to(truth.scalar_type()).reshape({-1, 1, sizes[2], sizes[3]});
-    auto dilated = torch::max_pool2d(c, 3, 1, 1);
-    auto eroded = 1 - torch::max_pool2d(1 - c, 3, 1, 1);
-    auto weight = 1 + o.edge_weight * (dilated - eroded).reshape(sizes);
-    loss = (weight * (out - truth).pow(2)).mean();
-  }
   if (o.loss == Loss::mse_force) {
     // Relative error of the total force of each frame, squared.
     auto f_out = out.sum({2, 3}), f_truth = truth.sum({2, 3});
