@@ -21,7 +21,6 @@ struct TrainCli {
   double lr = 0, cache_mb = 0;
   long long seed = -1;
   bool resume = false, force = false, no_contact_threshold = false, identity_pairs = false;
-  bool no_frame_globals = false;
 };
 
 std::array<int, 3> parse_channels(const std::string& text) {
@@ -66,7 +65,6 @@ void run(const TrainCli& c) {
   if (c.window) o.model.window = c.window;
   if (c.context >= 0) o.model.context = c.context;
   if (c.crop_rows >= 0) o.crop_rows = c.crop_rows;
-  if (c.no_frame_globals) o.model.frame_globals = false;
   if (!c.loss.empty()) {
     if (c.loss == "mse") o.loss = Loss::mse;
     else if (c.loss == "mse+force") o.loss = Loss::mse_force;
@@ -123,8 +121,6 @@ void setup(CLI::App& app) {
   cmd->add_option("--latent", opt->latent, "Latent width (128)");
   cmd->add_option("--window", opt->window, "Frames per window (the paper's 30; --arch frame works per frame: 1)");
   cmd->add_option("--context", opt->context, "--arch frame: neighbouring frames on each side as input (0)");
-  cmd->add_flag("--no-frame-globals", opt->no_frame_globals,
-                "--arch frame: FiLM from the attributes only (not the frame's total pressure and loaded share)");
   cmd->add_option("--crop-rows", opt->crop_rows,
                   "--arch frame: train on this many mat rows around the pressure (0 = whole mat)");
   cmd->add_option("--loss", opt->loss, "mse (the paper's content loss) | mse+force (adds total-force error)");

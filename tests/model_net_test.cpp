@@ -53,8 +53,6 @@ TEST(ModelNet, ParameterCountMatchesClosedForm) {
   ModelConfig with_context = small(Arch::frame);
   with_context.context = 2;
   EXPECT_EQ(parameter_count(*PressureTransferNet(with_context)), parameter_count(with_context));
-  with_context.frame_globals = false;
-  EXPECT_EQ(parameter_count(*PressureTransferNet(with_context)), parameter_count(with_context));
   // The paper's widths (64/128/256, 128, 128): 30x64x9+64 + ... (see model_config.cpp).
   ModelConfig paper = ModelConfig::paper();
   PressureTransferNet net(paper);

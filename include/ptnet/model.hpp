@@ -24,8 +24,7 @@
 // at the window's ends) as extra input channels, and the result is added to
 // the frame. Every convolution is followed by BatchNorm (no affine) and a
 // FiLM modulation (1 + gamma, beta) computed by a small MLP from the source
-// and target attributes and two global measures of the frame (log total
-// pressure, loaded share), so the body attributes act at every scale:
+// and target attributes, so the body attributes act at every scale:
 //   enc0 K->C1 (H x W), pool, enc1 C1->C2 (H1 x W1), pool, enc2 C2->C3 and
 //   mid C3->C3 (H2 x W2); dec1: upsample, 1x1 C3->C2 + enc1, C2->C2;
 //   dec0: upsample, 1x1 C2->C1 + enc0, C1->C1; head 3x3 C1->1 (zero-init).
@@ -42,8 +41,7 @@
 namespace ptnet {
 
 // Arch::frame's network: frames [M, K, H, W] (K = 1 + 2 context, the centre
-// frame in the middle), conditions [M, 2A + 2] (source, target attributes,
-// frame globals) ->
+// frame in the middle), conditions [M, 2A] (source, target attributes) ->
 // correction [M, 1, H, W] (normalised pressure, any sign).
 class FrameNetImpl : public torch::nn::Module {
  public:

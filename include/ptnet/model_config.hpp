@@ -29,7 +29,6 @@ namespace ptnet {
 
 inline constexpr int kWindow = 30;        // frames per window (input channels)
 inline constexpr int kAttributes = 3;     // sex, height, weight
-inline constexpr int kFrameGlobals = 2;   // Arch::frame: per-frame measures beside the attributes (model.hpp)
 inline constexpr int kHidden = 128;       // width of the FC layer after the encoder's convolutions
 inline constexpr int kLatent = 128;       // width of the latent after the source attributes
 inline constexpr int kPoolLevels = 3;     // encoder blocks (each halves rows and cols, rounding up)
@@ -76,8 +75,6 @@ struct ModelConfig {
   int hidden = kHidden;                    // FC after the flattened conv features
   int latent = kLatent;                    // FC after concatenating the source attributes
   int context = 0;                         // Arch::frame: neighbouring frames on each side as input
-  bool frame_globals = true;               // Arch::frame: FiLM also sees the frame's total pressure
-                                           // and loaded share (kFrameGlobals), not only the attributes
   static ModelConfig paper() { return {}; }
   static ModelConfig fast() {
     ModelConfig c;

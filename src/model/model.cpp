@@ -111,7 +111,7 @@ FrameNetImpl::FrameNetImpl(const ModelConfig& c) {
   lateral1 = register_module("lateral1", nn::Conv2d(nn::Conv2dOptions(c.channels[2], c.channels[1], 1)));
   lateral0 = register_module("lateral0", nn::Conv2d(nn::Conv2dOptions(c.channels[1], c.channels[0], 1)));
   head = register_module("head", nn::Conv2d(nn::Conv2dOptions(c.channels[0], 1, 3).padding(1)));
-  film1 = register_module("film1", nn::Linear(2 * kAttributes + (c.frame_globals ? kFrameGlobals : 0), c.hidden));
+  film1 = register_module("film1", nn::Linear(2 * kAttributes, c.hidden));
   film2 = register_module("film2", nn::Linear(c.hidden, film_width));
   pool = register_module("pool", nn::MaxPool2d(nn::MaxPool2dOptions(2).stride(2).ceil_mode(true)));
   // Zero-initialised: an untrained model is its input, with FiLM the identity.
@@ -146,19 +146,6 @@ torch::Tensor FrameNetImpl::forward(const torch::Tensor& frames, const torch::Te
   return head(d0);                                                            // [M,1,H,W]
 }
 
-// FiLM conditions of each frame: the source and target attributes (repeated
-// for the window's T frames) and two global measures of the frame that a
-// local convolution cannot see: log(1 + total pressure) and the share of
-// loaded cells (x 10). centre [N*T,H,W], source/target [N,A] -> [N*T, 2A+2].
-static torch::Tensor frame_conditions(const torch::Tensor& centre, const torch::Tensor& source,
-                                      const torch::Tensor& target, int64_t t, bool globals) {
-  auto attributes = torch::cat({source, target}, 1).repeat_interleave(t, 0);           // [N*T,2A]
-  if (!globals) return attributes;
-  auto total = torch::log1p(centre.clamp_min(0).sum({1, 2})).unsqueeze(1);           // [N*T,1]
-  auto loaded = (centre > 0).to(centre.scalar_type()).mean({1, 2}).unsqueeze(1) * 10;  // [N*T,1]
-  return torch::cat({attributes, total, loaded}, 1);
-}
-
 // Frames of a window with their context as channels: x [N,T,H,W] ->
 // [N*T, 1 + 2 context, H, W], the window's first/last frame repeated.
 static torch::Tensor frames_with_context(const torch::Tensor& x, int context) {
@@ -191,8 +178,8 @@ torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const
   if (c.arch == Arch::frame) {
     // Each frame on its own; the attributes repeated for the window's frames.
     const auto t = x.size(1);
-    auto frames = frames_with_context(x, c.context);                         // [N*T,K,H,W]
-    auto correction = frame(frames, frame_conditions(frames.select(1, c.context), source, target, t, c.frame_globals));
+    auto conditions = torch::cat({source, target}, 1).repeat_interleave(t, 0);  // [N*T, 2A]
+    auto correction = frame(frames_with_context(x, c.context), conditions);      // [N*T,1,H,W]
     return x + correction.view({n, t, x.size(2), x.size(3)});
   }
   auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2), s3 = pooled_size(c, 3);

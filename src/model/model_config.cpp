@@ -84,7 +84,7 @@ FrameCounts frame_counts(const ModelConfig& c) {
   }
   f.parameters += c3 * c2 + c2 + c2 * c1 + c1 + c1 * 9 + 1;                 // laterals, head
   f.macs_per_frame += p1 * double(c3 * c2) + p0 * double(c2 * c1) + p0 * 9.0 * double(c1);
-  const I conditions = 2 * kAttributes + (c.frame_globals ? kFrameGlobals : 0);
+  const I conditions = 2 * kAttributes;
   f.parameters += conditions * I(c.hidden) + c.hidden + I(c.hidden) * film + film;  // FiLM MLP
   f.macs_per_frame += double(conditions) * c.hidden + double(c.hidden) * double(film);
   return f;
@@ -133,8 +133,7 @@ std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
 json to_json(const ModelConfig& c) {
   return json{{"arch", arch_name(c.arch)}, {"align", align_name(c.align)}, {"window", c.window}, {"rows", c.rows},
               {"cols", c.cols}, {"channels", c.channels}, {"hidden", c.hidden},
-              {"latent", c.latent}, {"context", c.context}, {"frame_globals", c.frame_globals},
-              {"attributes", kAttributes},
+              {"latent", c.latent}, {"context", c.context}, {"attributes", kAttributes},
               {"output", "relu"}, {"pooling", "max 2x2 ceil, indices shared with the decoder"},
               {"parameters", parameter_count(c)}};
 }
@@ -179,7 +178,6 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   c.hidden = get<int>(j, "hidden", where);
   c.latent = get<int>(j, "latent", where);
   if (j.contains("context")) c.context = get<int>(j, "context", where);
-  if (j.contains("frame_globals")) c.frame_globals = get<bool>(j, "frame_globals", where);
   try {
     validate(c);
   } catch (const Error& e) {
