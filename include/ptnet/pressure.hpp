@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace ptnet {
@@ -41,6 +42,12 @@ struct PressureSequence {
   float& at(int t, int r, int c) { return frame(t)[r * mat.cols + c]; }
   float at(int t, int r, int c) const { return frame(t)[r * mat.cols + c]; }
 };
+
+// Every input format rejects NaN and infinite readings alike: throws Error
+// "FILE: WHAT: non-finite value (NaN or Inf) in frame T" (T counted from
+// `first_frame`). kpa: [n / cells frames, cells].
+void check_finite(const float* kpa, std::size_t n, int cells, const std::string& file, const std::string& what,
+                  std::size_t first_frame = 0);
 
 // Body-scale alignment of pressure maps from one body to another, for
 // retargeted motion: the same motion on a body `scale` times as tall lands

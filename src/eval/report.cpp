@@ -73,6 +73,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
   for (const auto& name : names) check_output_path(path(name), options.force);
 
   std::vector<std::string> written;
+  CommitGroup report;  // every file appears at the end, or none (a failure keeps the previous report)
   write_text_file(path("metrics.csv"), format_metrics_csv(rows), options.force);
   written.push_back(path("metrics.csv"));
 
@@ -131,6 +132,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
     write_png(path("qualitative.png"), stack(strips), options.force);
     written.push_back(path("qualitative.png"));
   }
+  report.commit();
   return written;
 }
 
