@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "cli_test_util.hpp"
+#include "data_test_util.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/train.hpp"
 #include "train_synthetic.hpp"
@@ -124,4 +125,13 @@ TEST_F(Reliability, TransferNeverReplacesItsInput) {
   EXPECT_EQ(n.status, 1);
   EXPECT_EQ(n.err, "ptnet: error: nan.npy: non-finite value (NaN or Inf) in frame 3\n");
   EXPECT_FALSE(fs::exists(dir_ / "nan_out.npy"));
+}
+
+TEST_F(Reliability, ImportNeverReplacesItsDataset) {
+  ptnet::testing_util::write_small_dataset((dir_ / "real.h5").string(), 70, 5, /*force=*/true);
+  const std::string before = slurp(dir_ / "real.h5");
+  const RunResult r = run("-q import --dataset real.h5 --subjects b1 --out real.h5 --force");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("real.h5: is the same file as the input real.h5"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir_ / "real.h5"), before);
 }
