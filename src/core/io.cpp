@@ -40,13 +40,19 @@ const char* kind_of(mode_t mode) {
   return "not a regular file";
 }
 
-// Throws if `path` exists as something an output may not replace.
-void check_replaceable(const std::string& path) {
+// Throws if `path` exists as something an output may not replace: not a
+// regular file, or (after the `exists` check of check_output_path) an input.
+void check_regular(const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) return;  // absent (or a dangling link): a new file
   if (!S_ISREG(st.st_mode))
     throw Error::in(path, std::string("is ") + kind_of(st.st_mode) +
                               ", not a regular file; refusing to replace it (even with --force)");
+}
+
+void check_not_input(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return;
   std::lock_guard<std::mutex> lock(g_inputs_mutex);
   for (const FileId& in : g_inputs) {
     if (in.dev != st.st_dev || in.ino != st.st_ino) continue;
@@ -132,6 +138,11 @@ void remove_stale_temps(const fs::path& target) {
 
 thread_local CommitGroup* t_group = nullptr;
 
+void check_replaceable(const std::string& path) {
+  check_regular(path);
+  check_not_input(path);
+}
+
 void rename_into_place(const std::string& temp, const std::string& path) {
   check_replaceable(path);
   std::error_code ec;
@@ -183,9 +194,10 @@ void note_input(const std::string& path) {
 // ------------------------------------------------------------ outputs
 
 void check_output_path(const std::string& path, bool force) {
-  check_replaceable(path);
+  check_regular(path);
   std::error_code ec;
   if (fs::exists(path, ec) && !force) throw Error::in(path, "exists; pass --force to overwrite");
+  check_not_input(path);
   fs::path parent = fs::path(path).parent_path();
   if (parent.empty()) parent = ".";
   if (!fs::is_directory(parent, ec)) throw Error::in(path, "folder " + parent.string() + " does not exist");

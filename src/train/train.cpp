@@ -366,9 +366,10 @@ void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
   }
 }
 
-// Removes what a fresh run wrote when it fails before model.pt exists (no
-// epoch finished): config.json, checkpoint.pt, history.csv and the folder
-// if it is then empty. A resumed run, or one with model.pt, is left as is.
+// Removes what a fresh run wrote when it fails while setting up (before the
+// first epoch starts: bad --init weights, memory, data): config.json,
+// checkpoint.pt, history.csv and the folder if it is then empty. Failures in
+// the epochs keep the last checkpoint and say so; a resumed run is left as is.
 class LeftoverGuard {
  public:
   LeftoverGuard(std::string dir, bool resume) : dir_(std::move(dir)), active_(!resume) {}
@@ -447,7 +448,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
                  {"protocol", "role=retargeted, take=1; 9:1 per-motion time blocks"}};
   md.options = options_json(o);
   prepare_out_dir(out_dir, o);
-  // A fresh run that fails before its first epoch leaves nothing behind.
+  // A fresh run that fails while setting up leaves nothing behind.
   LeftoverGuard leftovers(out_dir, o.resume);
 
   torch::manual_seed(o.seed);
@@ -487,6 +488,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       (o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
 
   Batcher batcher(source, index, md.norm, o.cache_mb, device, md.model.align);
+  leftovers.done();  // from here a failure names what it keeps (the checkpoint)
   TrainResult result;
   const bool finished_before = s.epoch >= o.epochs || s.bad_epochs >= o.patience;
   for (int e = s.epoch; e < o.epochs && s.bad_epochs < o.patience && !finished_before; ++e) {
@@ -599,7 +601,6 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
                 v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)], v.binary_r2.front(),
                 v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
   log(line);
-  leftovers.done();
   return result;
 }
 
