@@ -2,14 +2,15 @@
 #   make demo   install what is missing, build, run the whole pipeline on the
 #               embedded procedural motions (no external data)
 #   make test   install what is missing, build, run every test
-# Other targets: build, bench, asan (sanitizer build + tests), clean.
+# Other targets: build, bench, asan (sanitizer build + tests), fuzz (libFuzzer
+# harnesses with ASan + UBSan in build-fuzz/, clang), clean.
 
 BUILD    ?= build
 JOBS     ?= $(shell nproc)
 CMAKE_FLAGS ?=
 DEMO_OUT ?= demo
 
-.PHONY: deps build demo test bench asan clean
+.PHONY: deps build demo test bench asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -34,5 +35,12 @@ asan: deps
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ctest --output-on-failure -L unit -j $(JOBS)
 
+fuzz: deps
+	PTNET_FUZZ_DEPS=1 ./scripts/install-deps.sh
+	cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPTNET_FUZZ=ON \
+	      -DPTNET_BUILD_TESTS=OFF -DPTNET_BUILD_BENCH=OFF
+	cmake --build build-fuzz -j $(JOBS) --target fuzzers
+	@echo "fuzzers in build-fuzz/fuzz/; seeds in tests/data/fuzz/ (README.md, Development)"
+
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) build-asan build-fuzz

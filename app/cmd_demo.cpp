@@ -70,7 +70,7 @@ void run(const DemoCli& c) {
   const std::string report_dir = (fs::path(c.out) / "report").string();
   for (const auto& p : {data_path, bodies_path, figure_path}) check_output_path(p, c.force);
   if (!c.no_train)
-    for (const auto& p : {model_dir, report_dir}) check_output_path(p, c.force);
+    for (const auto& p : {model_dir, report_dir}) check_output_folder(p, c.force);
 
   const auto bodies = sample_bodies(8, 8, 2, 2, c.seed);
   write_text_file(bodies_path, format_bodies_csv(bodies), c.force);
@@ -113,9 +113,9 @@ void setup(CLI::App& app) {
   cmd->add_option("--out", c->out, "Output folder")->capture_default_str();
   cmd->add_option("--performers", c->performers, "Procedural performers")->capture_default_str()->check(CLI::Range(1, 50));
   cmd->add_option("--takes", c->takes, "Takes per performer and category")->capture_default_str()->check(CLI::Range(1, 5));
-  cmd->add_option("--seconds", c->seconds, "Seconds per clip")->capture_default_str()->check(CLI::Range(2.0, 120.0));
+  cmd->add_option("--seconds", c->seconds, "Seconds per clip")->capture_default_str()->check(in_range(2, 120));
   cmd->add_option("--seed", c->seed, "Seed")->capture_default_str();
-  cmd->add_option("--threads", c->threads, "Simulation threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--threads", c->threads, "Simulation threads (0: all cores)")->capture_default_str()->check(thread_count(true));
   cmd->add_option("--epochs", c->epochs, "Training epochs (fast preset)")->capture_default_str()->check(CLI::Range(1, 500));
   cmd->add_flag("--no-train", c->no_train, "Stop after the dataset and its figure");
   cmd->add_flag("--force", c->force, "Overwrite existing outputs");

@@ -45,10 +45,13 @@ void setup(CLI::App& app) {
   cmd->add_option("--model", c->model, "Model directory (ptnet train --out)")->required();
   cmd->add_option("--data", c->data, "Dataset (.h5) with at least two 'original' bodies")->required();
   cmd->add_option("--threshold", c->threshold_kpa, "Binarisation threshold for binary R^2 and IoU (kPa)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive(1e6));
   cmd->add_option("--out", c->out, "Report folder")->capture_default_str();
-  cmd->add_option("--stride", c->stride, "Frames between transfer windows (averaged)")->capture_default_str();
-  cmd->add_option("--threads", c->threads, "Torch threads (0: default)")->capture_default_str();
+  cmd->add_option("--stride", c->stride, "Frames between transfer windows (averaged)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--threads", c->threads, "Torch threads (0: default)")->capture_default_str()->check(thread_count(true));
   cmd->add_flag("--raw", c->raw, "Raw network output: skip the model's fitted contact threshold");
   cmd->add_flag("--force", c->force, "Overwrite existing report files");
   cmd->callback([c] { run(*c); });

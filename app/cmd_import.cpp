@@ -50,8 +50,8 @@ void setup(CLI::App& app) {
   s->add_option("--out", c->out, "Dataset file to write (.h5)")->required();
   s->add_option("--rows", c->o.mat.rows, "Mat rows")->capture_default_str()->check(CLI::Range(1, 4096));
   s->add_option("--cols", c->o.mat.cols, "Mat columns")->capture_default_str()->check(CLI::Range(1, 4096));
-  s->add_option("--pitch", c->o.mat.pitch_m, "Cell size (m)")->capture_default_str()->check(CLI::PositiveNumber);
-  s->add_option("--fps", c->o.fps, "Frame rate of the recordings (Hz)")->capture_default_str()->check(CLI::PositiveNumber);
+  s->add_option("--pitch", c->o.mat.pitch_m, "Cell size (m)")->capture_default_str()->check(ptnet::cli::positive(10));
+  s->add_option("--fps", c->o.fps, "Frame rate of the recordings (Hz)")->capture_default_str()->check(ptnet::cli::positive(10000));
   s->add_flag("--force", c->force, "Overwrite an existing file");
   s->callback([c] {
     if (!c->dataset.empty()) {

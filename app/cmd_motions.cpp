@@ -130,11 +130,11 @@ void setup(CLI::App& app) {
   auto* categories = cmd->add_option("--categories", opt->categories, "A set: comma-separated categories")
                          ->capture_default_str();
   auto* out_dir = cmd->add_option("--out-dir", opt->out_dir, "A set: output folder (one BVH per clip + clips.csv)");
-  cmd->add_option("--seconds", opt->seconds, "Clip length (s)")->capture_default_str()->check(CLI::Range(0.1, 3600.0));
-  cmd->add_option("--fps", opt->fps, "Frame rate (Hz)")->capture_default_str()->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--seconds", opt->seconds, "Clip length (s)")->capture_default_str()->check(in_range(0.1, 3600));
+  cmd->add_option("--fps", opt->fps, "Frame rate (Hz)")->capture_default_str()->check(in_range(1, 1000));
   cmd->add_option("--seed", opt->seed, "Seed, mixed with performer and take")->capture_default_str();
   cmd->add_option("--height-cm", opt->height_cm, "Body height (cm); default: the performer's own")
-      ->check(CLI::Range(50.0, 250.0));
+      ->check(in_range(50, 250));
   cmd->add_flag("--force", opt->force, "Overwrite existing files");
   out->excludes(out_dir);
   out->needs(category);

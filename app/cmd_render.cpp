@@ -45,14 +45,14 @@ void setup(CLI::App& app) {
       ->required();
   cmd->add_option("-o,--out", o->out, "Output figure: .png (strip) or .gif (animation)")->required();
   cmd->add_option("--frames", o->frames, "Number of evenly spaced frames (PNG default 6; GIF default all)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--frame-list", o->frame_list, "Explicit frame indices, e.g. 0,10,20")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Range(0, 2147483647))
       ->excludes("--frames");
   cmd->add_flag("--cop", o->cop, "Draw the centre-of-pressure trace");
   cmd->add_option("--vmax", o->vmax_kpa, "Top of the colour scale in kPa (default: data maximum, rounded up)")
-      ->check(CLI::PositiveNumber);
+      ->check(ptnet::cli::positive(1e9));
   cmd->add_option("--cell-px", o->cell_px, "Pixels per mat cell")->capture_default_str()->check(CLI::Range(1, 40));
   cmd->add_flag("-f,--force", o->force, "Overwrite the output if it exists");
   cmd->callback([o] { run(*o); });

@@ -112,11 +112,11 @@ void setup(CLI::App& app) {
   cmd->add_option("--takes", c->takes, "--embedded: takes per performer and category")
       ->capture_default_str()->check(CLI::Range(1, 10));
   cmd->add_option("--seconds", c->seconds, "--embedded: seconds per clip")
-      ->capture_default_str()->check(CLI::Range(1.0, 600.0));
+      ->capture_default_str()->check(in_range(1, 600));
   cmd->add_option("--fps", c->fps, "Frame rate of the dataset (motions are resampled)")
-      ->capture_default_str()->check(CLI::Range(1.0, 1000.0));
+      ->capture_default_str()->check(in_range(1, 1000));
   cmd->add_option("--seed", c->seed, "Seed of the sensor noise (and of --embedded motions)")->capture_default_str();
-  cmd->add_option("--threads", c->threads, "Threads (0: all cores)")->capture_default_str()->check(CLI::Range(0, 256));
+  cmd->add_option("--threads", c->threads, "Threads (0: all cores)")->capture_default_str()->check(thread_count(true));
   cmd->add_option("--placement", c->placement, "fixed: a physical mat; follow: the mat follows the body")
       ->capture_default_str()->check(CLI::IsMember({"fixed", "follow"}));
   cmd->add_option("--units", c->units, "BVH units for files the clips CSV does not describe: auto|m|cm|mm|in|cmu")
@@ -124,20 +124,20 @@ void setup(CLI::App& app) {
   cmd->add_option("--up", c->up, "BVH up axis for files the clips CSV does not describe: y|z")->capture_default_str();
   cmd->add_option("--rows", c->rows, "Mat rows (along the walking axis)")->capture_default_str()->check(CLI::Range(1, 1000));
   cmd->add_option("--cols", c->cols, "Mat columns")->capture_default_str()->check(CLI::Range(1, 1000));
-  cmd->add_option("--pitch", c->pitch_m, "Cell size (m)")->capture_default_str()->check(CLI::Range(0.001, 0.2));
+  cmd->add_option("--pitch", c->pitch_m, "Cell size (m)")->capture_default_str()->check(in_range(0.001, 0.2));
   cmd->add_option("--compliance-mm", c->compliance_mm, "Contact band above the ground (mm)")
-      ->capture_default_str()->check(CLI::Range(1.0, 50.0));
+      ->capture_default_str()->check(in_range(1, 50));
   cmd->add_option("--subsamples", c->subsamples, "Depth samples per cell side")
       ->capture_default_str()->check(CLI::Range(1, 16));
   cmd->add_flag("--ideal-sensor", c->ideal, "No crosstalk, saturation, noise, threshold or quantisation");
   cmd->add_option("--crosstalk", c->crosstalk, "Fraction leaking to each of 4 neighbours (default 0.02)")
-      ->check(CLI::Range(0.0, 0.24));
+      ->check(in_range(0, 0.24));
   cmd->add_option("--saturation-kpa", c->saturation_kpa, "Readings clip here (default 600)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--noise-kpa", c->noise_kpa, "Read noise SD (default 0.2)")->check(CLI::NonNegativeNumber);
+      ->check(positive(1e6));
+  cmd->add_option("--noise-kpa", c->noise_kpa, "Read noise SD (default 0.2)")->check(in_range(0, 1e4));
   cmd->add_option("--threshold-kpa", c->threshold_kpa, "Activation threshold (default 1)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--quantum-kpa", c->quantum_kpa, "ADC step, 0: off (default 0.1)")->check(CLI::NonNegativeNumber);
+      ->check(in_range(0, 1e6));
+  cmd->add_option("--quantum-kpa", c->quantum_kpa, "ADC step, 0: off (default 0.1)")->check(in_range(0, 1e6));
   cmd->add_flag("--no-floor", c->no_floor,
                 "Skip the second-seed copies of original-body sequences (/floor: the noise floor of evaluate)");
   cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");

@@ -36,7 +36,7 @@ void setup(CLI::App& app) {
       ->excludes(mocap);
   s->add_option("--seconds", c->o.seconds, "Seconds per category clip (procedural)")
       ->capture_default_str()
-      ->check(CLI::Range(2.0, 600.0))
+      ->check(ptnet::cli::in_range(2, 600))
       ->excludes(mocap);
   s->add_option("--takes", c->o.takes, "Clips per category and subject (procedural)")
       ->capture_default_str()
@@ -44,13 +44,16 @@ void setup(CLI::App& app) {
       ->excludes(mocap);
   s->add_option("--first-performer", c->o.first_performer, "Procedural performer of s1")
       ->capture_default_str()
+      ->check(CLI::Range(1, 1000000))
       ->excludes(mocap);
-  s->add_option("--crosstalk", c->o.crosstalk, "Crosstalk per neighbour")->capture_default_str()->check(CLI::Range(0.0, 0.2));
-  s->add_option("--noise", c->o.noise_sd_kpa, "Read noise sd (kPa)")->capture_default_str()->check(CLI::Range(0.0, 50.0));
-  s->add_option("--gain-sd", c->o.gain_sd, "Sigma of the per-cell log-normal gain")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  s->add_option("--dead", c->o.dead_fraction, "Fraction of dead cells")->capture_default_str()->check(CLI::Range(0.0, 0.5));
+  s->add_option("--crosstalk", c->o.crosstalk, "Crosstalk per neighbour")->capture_default_str()->check(ptnet::cli::in_range(0, 0.2));
+  s->add_option("--noise", c->o.noise_sd_kpa, "Read noise sd (kPa)")->capture_default_str()->check(ptnet::cli::in_range(0, 50));
+  s->add_option("--gain-sd", c->o.gain_sd, "Sigma of the per-cell log-normal gain")->capture_default_str()->check(ptnet::cli::in_range(0, 1));
+  s->add_option("--dead", c->o.dead_fraction, "Fraction of dead cells")->capture_default_str()->check(ptnet::cli::in_range(0, 0.5));
   s->add_option("--seed", c->o.seed, "Seed (bodies, motions, noise, gain map)")->capture_default_str();
-  s->add_option("--threads", c->o.threads, "Simulation threads (0: all cores)")->capture_default_str();
+  s->add_option("--threads", c->o.threads, "Simulation threads (0: all cores)")
+      ->capture_default_str()
+      ->check(ptnet::cli::thread_count(true));
   s->add_flag("--force", c->force, "Overwrite an existing file");
   s->callback([c] {
     if (!ptnet::cli::globals().quiet)

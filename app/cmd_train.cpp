@@ -97,19 +97,24 @@ void setup(CLI::App& app) {
   cmd->add_option("--data", opt->data, "Dataset file (HDF5, ptnet simulate)")->required();
   cmd->add_option("--out", opt->out, "Model folder to create")->required();
   cmd->add_option("--preset", opt->preset, "paper | fast")->capture_default_str();
-  cmd->add_option("--epochs", opt->epochs, "Maximum epochs");
-  cmd->add_option("--batch", opt->batch, "Windows per optimiser step");
+  cmd->add_option("--epochs", opt->epochs, "Maximum epochs")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--batch", opt->batch, "Windows per optimiser step")->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--micro-batch", opt->micro_batch,
-                  "Windows per forward/backward pass (gradients accumulated up to --batch; default 64)");
-  cmd->add_option("--lr", opt->lr, "Initial Adam learning rate");
-  cmd->add_option("--lr-halve-every", opt->lr_halve_every, "Epochs between learning-rate halvings");
-  cmd->add_option("--patience", opt->patience, "Early stop after this many epochs without improvement");
-  cmd->add_option("--seed", opt->seed, "Seed of weights, sampling and split (default 1)");
-  cmd->add_option("--threads", opt->threads, "CPU threads (paper 2, fast 1: measured, see bench_model)");
+                  "Windows per forward/backward pass (gradients accumulated up to --batch; default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--lr", opt->lr, "Initial Adam learning rate")->check(positive(10));
+  cmd->add_option("--lr-halve-every", opt->lr_halve_every, "Epochs between learning-rate halvings")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--patience", opt->patience, "Early stop after this many epochs without improvement")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--seed", opt->seed, "Seed of weights, sampling and split (default 1)")
+      ->check(CLI::Range(0LL, (1LL << 62)));
+  cmd->add_option("--threads", opt->threads, "CPU threads (paper 2, fast 1: measured, see bench_model; 0: LibTorch default)")
+      ->check(thread_count(true));
   cmd->add_option("--device", opt->device, "cpu | cuda")->capture_default_str();
-  cmd->add_option("--stride", opt->stride, "Frames between window starts");
-  cmd->add_option("--samples-per-epoch", opt->samples_per_epoch, "Training windows per epoch (0 = all)");
-  cmd->add_option("--val-samples", opt->val_samples, "Validation windows (0 = all)");
+  cmd->add_option("--stride", opt->stride, "Frames between window starts")->check(CLI::Range(1, 100000));
+  cmd->add_option("--samples-per-epoch", opt->samples_per_epoch, "Training windows per epoch (0 = all)")
+      ->check(CLI::Range(0LL, 1LL << 40));
+  cmd->add_option("--val-samples", opt->val_samples, "Validation windows (0 = all)")->check(CLI::Range(0LL, 1LL << 40));
   cmd->add_option("--arch", opt->arch,
                   "faithful (the paper's) | skip (U-Net skip connections) | residual (skip, learns a correction "
                   "to the source) | frame (per-frame conditional U-Net with FiLM at every scale, a correction)");
@@ -117,14 +122,19 @@ void setup(CLI::App& app) {
                   "none (the paper's) | zoom (input aligned to the target body: zoomed by the height ratio "
                   "about the mat centre, scaled by weight over area ratio)");
   cmd->add_option("--channels", opt->channels, "Conv widths of the three blocks, e.g. 64,128,256");
-  cmd->add_option("--hidden", opt->hidden, "Width of the FC layer after the convolutions (128)");
-  cmd->add_option("--latent", opt->latent, "Latent width (128)");
-  cmd->add_option("--window", opt->window, "Frames per window (the paper's 30; --arch frame works per frame: 1)");
-  cmd->add_option("--context", opt->context, "--arch frame: neighbouring frames on each side as input (0)");
+  cmd->add_option("--hidden", opt->hidden, "Width of the FC layer after the convolutions (128)")
+      ->check(CLI::Range(1, 1 << 16));
+  cmd->add_option("--latent", opt->latent, "Latent width (128)")->check(CLI::Range(1, 1 << 16));
+  cmd->add_option("--window", opt->window, "Frames per window (the paper's 30; --arch frame works per frame: 1)")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--context", opt->context, "--arch frame: neighbouring frames on each side as input (0)")
+      ->check(CLI::Range(0, 16));
   cmd->add_option("--crop-rows", opt->crop_rows,
-                  "--arch frame: train on this many mat rows around the pressure (0 = whole mat)");
+                  "--arch frame: train on this many mat rows around the pressure (0 = whole mat)")
+      ->check(CLI::Range(0, 1 << 24));
   cmd->add_option("--loss", opt->loss, "mse (the paper's content loss) | mse+force (adds total-force error)");
-  cmd->add_option("--cache-mb", opt->cache_mb, "Budget of the whole-sequence cache (default 1024)");
+  cmd->add_option("--cache-mb", opt->cache_mb, "Budget of the whole-sequence cache (default 1024)")
+      ->check(positive(1e7));
   cmd->add_flag("--no-contact-threshold", opt->no_contact_threshold,
                 "Do not fit the output activation threshold (raw network output, as in the paper)");
   cmd->add_flag("--resume", opt->resume, "Continue from OUT/checkpoint.pt");

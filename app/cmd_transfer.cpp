@@ -40,14 +40,14 @@ BodySpec parse_body(const std::string& text, const std::string& option) {
   b.id = option.substr(2);
   if (sex == "female" || sex == "f" || sex == "0") b.sex = Sex::female;
   else if (sex == "male" || sex == "m" || sex == "1") b.sex = Sex::male;
-  else throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found \"" + text + "\"");
+  else throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found " + escaped(text));
   try {
     std::size_t used_h = 0, used_w = 0;
     b.height_cm = std::stod(h, &used_h);
     b.weight_kg = std::stod(w, &used_w);
     if (used_h != h.size() || used_w != w.size() || more) throw std::invalid_argument("trailing");
   } catch (const std::exception&) {
-    throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found \"" + text + "\"");
+    throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found " + escaped(text));
   }
   return b;
 }
@@ -90,6 +90,7 @@ void run(const TransferCli& c) {
     source = c.source.empty() ? d.body(meta.body_id) : parse_body(c.source, "--source");
   }
   check_body_range(source, "source body");
+  check_output_path(c.out, c.force);  // again, now that the input is known: never the input itself
   if (!globals().quiet)
     std::cerr << "transfer: " << src.frames() << " frames, " << sex_name_text(source) << " " << source.height_cm
               << " cm " << source.weight_kg << " kg -> " << sex_name_text(target) << " " << target.height_cm
@@ -129,8 +130,10 @@ void setup(CLI::App& app) {
   cmd->add_option("--source", opt->source, "Source body SEX,HEIGHT_CM,WEIGHT_KG (default: from the dataset)");
   cmd->add_option("--target", opt->target, "Target body SEX,HEIGHT_CM,WEIGHT_KG, e.g. male,185,95")->required();
   cmd->add_option("--out", opt->out, "Output .h5 or .npy")->required();
-  cmd->add_option("--stride", opt->stride, "Frames between window starts (1 = every window)")->capture_default_str();
-  cmd->add_option("--threads", opt->threads, "CPU threads (0 = LibTorch default)");
+  cmd->add_option("--stride", opt->stride, "Frames between window starts (1 = every window)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--threads", opt->threads, "CPU threads (0 = LibTorch default)")->check(thread_count(true));
   cmd->add_option("--device", opt->device, "cpu | cuda")->capture_default_str();
   cmd->add_flag("--raw", opt->raw, "Raw network output: skip the model's fitted contact threshold");
   cmd->add_flag("--force", opt->force, "Overwrite the output");

@@ -180,7 +180,7 @@ void setup(CLI::App& app) {
       ->check(CLI::Range(1, 100));
   c->add_option("--bandwidth", o->bandwidth,
                 "Mean-shift bandwidth in PCA units (default: estimated, docs/har.md)")
-      ->check(CLI::PositiveNumber);
+      ->check(ptnet::cli::positive(1e6));
   c->add_option("--stride", o->stride, "Frames between window starts (paper: 1)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
@@ -201,7 +201,7 @@ void setup(CLI::App& app) {
                 "CPU threads of the transfer model and the classifiers (1: measured fastest for "
                 "these small networks, docs/results.md)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 256));
+      ->check(ptnet::cli::thread_count(false));
   c->add_flag("--no-categories", o->no_categories,
               "Skip the classifiers trained on the dataset's category labels");
   c->add_option("--out", o->out, "Output folder (results.json, confusion.png, index.html)")

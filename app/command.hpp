@@ -20,6 +20,9 @@
 #include <utility>
 #include <vector>
 
+#include "ptnet/error.hpp"
+#include "ptnet/parallel.hpp"
+
 namespace ptnet::cli {
 
 using Setup = void (*)(CLI::App& app);
@@ -32,6 +35,36 @@ inline std::vector<std::pair<int, Setup>>& registry() {
 struct Registrar {
   Registrar(int order, Setup setup) { registry().emplace_back(order, setup); }
 };
+
+// ---- Option checks. Every numeric option has one: a range that NaN and Inf
+// fall outside of, and messages with short numbers ("--lr: 0 is not in
+// (0, 10]").
+
+// A finite number in [lo, hi] (lo_open: (lo, hi]).
+inline CLI::Validator in_range(double lo, double hi, bool lo_open = false) {
+  const std::string range = std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + "]";
+  return CLI::Validator(
+      [=](std::string& input) -> std::string {
+        double v = 0;
+        std::size_t used = 0;
+        try {
+          v = std::stod(input, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != input.size()) return escaped(input, 30) + " is not a number";
+        if (!std::isfinite(v) || v < lo || v > hi || (lo_open && v == lo))
+          return escaped(input, 30) + " is not in " + range;
+        return std::string();
+      },
+      "in " + range);
+}
+// A number > 0 (and <= hi).
+inline CLI::Validator positive(double hi = 1e9) { return in_range(0, hi, /*lo_open=*/true); }
+// Threads: 1 .. max_threads() (0 too when it means "the default").
+inline CLI::Validator thread_count(bool zero_means_default) {
+  return in_range(zero_means_default ? 0 : 1, max_threads());
+}
 
 // Global flags every command may read (set by main before callbacks run).
 struct Globals {

@@ -4,9 +4,11 @@
 set -euo pipefail
 packages=(cmake g++ make ccache pkg-config
           libtorch-dev libhdf5-dev hdf5-tools libeigen3-dev libcli11-dev
-          nlohmann-json3-dev libpng-dev libgif-dev libgtest-dev libgmock-dev
+          nlohmann-json3-dev zlib1g-dev libpng-dev libgif-dev libgtest-dev libgmock-dev
           libbenchmark-dev libopenblas0-openmp  # OpenBLAS: LibTorch falls back to netlib BLAS (~25x slower) without it
           chromium fonts-dejavu-core)  # the report-page tests load index.html in headless chromium
+# make fuzz only: clang with libFuzzer and the sanitizer runtimes.
+if [ "${PTNET_FUZZ_DEPS:-0}" = 1 ]; then packages=(clang libclang-rt-14-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -239,7 +239,7 @@ TEST(Dataset, WriterValidatesWhatItIsGiven) {
             dir.file("x.h5") + ": body id 'b1' appears twice");
   bodies[1] = BodySpec{"b3", Sex::male, 260, 80};
   EXPECT_EQ(error_of([&] { DatasetWriter(dir.file("x.h5"), info, bodies, false); }),
-            dir.file("x.h5") + ": body 'b3': height_cm 260.000000 outside 100-230");
+            dir.file("x.h5") + ": body 'b3': height_cm 260 outside 100-230");
 }
 
 // --- Files that are wrong in one way each ---------------------------------

@@ -76,7 +76,7 @@ TEST(HarImport, BadManifestLinesNameFileAndLine) {
   EXPECT_EQ(message("subject,sex,height_cm,weight_kg,file\ns1,x,160,55,a.csv\n"),
             m + ":2: expected sex female or male, found 'x'");
   EXPECT_EQ(message("subject,sex,height_cm,weight_kg,file\ns1,f,160,55\n"),
-            m + ":2: expected 5 fields, found 4");
+            m + ":2: expected 5 fields (as the header), found 4");
   EXPECT_EQ(message("subject,sex,height_cm,weight_kg,file\ns1,f,160,55,a.csv\ns1,f,170,55,a.csv\n"),
             m + ":3: expected the attributes given before for subject s1, found different ones");
   f.write("b.csv", "1,2,3\n");

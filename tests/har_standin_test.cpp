@@ -14,6 +14,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
+#include "ptnet/simulate_dataset.hpp"
 
 using namespace ptnet;
 using namespace ptnet::har;
@@ -68,7 +69,7 @@ TEST(HarStandin, WritesSubjectsOnTheirOwnBodiesWithDeadCellsSilent) {
 TEST(HarStandin, MocapClipsAreGroupedByCmuSubjectOnTheirOwnBodies) {
   namespace fs = std::filesystem;
   if (!fs::exists(fs::path(PTNET_SHARED_MOCAP) / "clips.csv")) GTEST_SKIP() << "../shared/mocap not found";
-  const auto clips = read_mocap_clips(PTNET_SHARED_MOCAP);
+  const auto clips = ptnet::read_clips_csv(std::string(PTNET_SHARED_MOCAP) + "/clips.csv");
   ASSERT_EQ(clips.size(), 11u);
   std::map<std::string, std::set<std::string>> expected;  // subject -> categories, from clips.csv
   for (const auto& c : clips) expected["s" + c.subject].insert(c.category);
@@ -127,7 +128,7 @@ TEST(HarStandin, BadClipsCsvLinesNameFileAndLine) {
   auto message = [&](const std::string& text) {
     std::ofstream(csv) << text;
     try {
-      read_mocap_clips(dir.string());
+      ptnet::read_clips_csv(csv);
     } catch (const ptnet::Error& e) {
       return std::string(e.what());
     }
@@ -135,11 +136,13 @@ TEST(HarStandin, BadClipsCsvLinesNameFileAndLine) {
   };
   EXPECT_EQ(message("file,subject,category,take\na.bvh,2,dancing,1\n"),
             csv + ":2: expected category walking, rom, freestyle or acting, found 'dancing'");
-  EXPECT_EQ(message("file,subject,category,take\na.bvh,2,rom\n"), csv + ":2: expected 4 fields, found 3");
+  EXPECT_EQ(message("file,subject,category,take\na.bvh,2,rom\n"),
+            csv + ":2: expected 4 fields (as the header), found 3");
   EXPECT_EQ(message("file,subject,take\na.bvh,2,1\n"),
-            csv + ":1: expected a header with column category, found 'file,subject,take'");
+            csv + ":1: expected a header with column category (file,subject,category,take[,metres_per_unit,up]), "
+                  "found 'file,subject,take'");
   EXPECT_EQ(message("file,subject,category,take\na.bvh,2,rom,0\n"),
-            csv + ":2: expected a take number >= 1, found '0'");
+            csv + ":2: expected take as an integer in 1-1000000, found '0'");
   fs::remove_all(dir);
 }
 #else

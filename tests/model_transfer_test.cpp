@@ -155,7 +155,7 @@ TEST_F(TransferTest, BrokenModelFoldersAreClearErrors) {
   p = copy_model("badweights");
   std::ofstream(p / "model.pt") << "truncated";
   EXPECT_EQ(expect_error([&] { Transfer(p.string()); }),
-            (p / "model.pt").string() + ": not a ptnet weights file (corrupt or truncated)");
+            (p / "model.pt").string() + ": damaged archive: too short for a zip archive (9 bytes)");
   fs::remove(p / "model.pt");
   EXPECT_EQ(expect_error([&] { Transfer(p.string()); }), (p / "model.pt").string() + ": no such file (model weights)");
   fs::remove_all(p);
@@ -164,6 +164,7 @@ TEST_F(TransferTest, BrokenModelFoldersAreClearErrors) {
   p = copy_model("window");
   auto j = nlohmann::json::parse(std::ifstream(p / "config.json"));
   j["architecture"]["window"] = 20;
+  j["window"] = 20;
   std::ofstream(p / "config.json") << j.dump();
   EXPECT_NE(expect_error([&] { Transfer(p.string()); }).find("the model expects [4, 20, 3, 3]"), std::string::npos);
   fs::remove_all(p);

@@ -119,7 +119,7 @@ TEST_F(SimulateCli, BadInputIsOneLineExitOneAndNoFile) {
 
   spit(dir_ / "hdr.csv", "name,sex,h,w\nb,male,170,70\n");
   expect_error(std::string(kSmall).replace(std::string(kSmall).find("bodies.csv"), 10, "hdr.csv") + " --out o.h5",
-               {"hdr.csv:1", "expected header id,sex,height_cm,weight_kg"}, {"bodies.csv", "hdr.csv"});
+               {"hdr.csv:1", "expected a header with column id (id,sex,height_cm,weight_kg[,role])"}, {"bodies.csv", "hdr.csv"});
 
   spit(dir_ / "range.csv", "id,sex,height_cm,weight_kg\nb1,male,300,70\n");
   expect_error("--embedded --bodies range.csv --out o.h5", {"range.csv:2", "height_cm", "300"},

@@ -99,13 +99,14 @@ TEST_F(SimulateDataset, ClipsCsvRowsAndErrors) {
 
   const std::string csv = (dir_ / "bad.csv").string();
   spit(csv, "file,subject,category,take\nw.bvh,1,walking,x\n");
-  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: expected take as a positive integer, found 'x'");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: expected take as an integer in 1-1000000, found 'x'");
   spit(csv, "file,subject,category,take\nw.bvh,1,jogging,1\n");
   EXPECT_EQ(error_of([&] { read_clips_csv(csv); }),
             csv + ":2: expected category walking, rom, freestyle or acting, found 'jogging'");
   spit(csv, "file,subject,take\n");
   EXPECT_EQ(error_of([&] { read_clips_csv(csv); }),
-            csv + ":1: expected a header with columns file,subject,category,take, found 'file,subject,take'");
+            csv + ":1: expected a header with column category (file,subject,category,take[,metres_per_unit,up]), "
+                  "found 'file,subject,take'");
   spit(csv, "file,subject,category,take\ngone.bvh,1,walking,1\n");
   EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'gone.bvh' not found");
 

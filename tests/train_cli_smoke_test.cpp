@@ -92,7 +92,7 @@ TEST_F(CliSmoke, TrainThenTransferToNpyAndH5) {
   r = run("transfer --model " + model + " --in " + out_npy + " --source male,185,95 --target giant,300 --out " +
           (dir_ / "x.npy").string());
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err, "ptnet: error: --target: expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found \"giant,300\"\n");
+  EXPECT_EQ(r.err, "ptnet: error: --target: expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found 'giant,300'\n");
   r = run("transfer --model " + model + " --in " + out_npy + " --source male,185,95 --target male,300,80 --out " +
           (dir_ / "x.npy").string());
   EXPECT_EQ(r.status, 1);

@@ -34,6 +34,8 @@ void validate(const BodySpec& body);
 BodySpec parse_body_attributes(const std::string& text);
 
 std::vector<BodySpec> read_bodies_csv(const std::string& path);
+// The same on CSV text (`source` names it in messages).
+std::vector<BodySpec> parse_bodies_csv(const std::string& text, const std::string& source);
 std::string format_bodies_csv(const std::vector<BodySpec>& bodies);
 
 }  // namespace ptnet

@@ -74,7 +74,11 @@ class DatasetWriter {
 class Dataset {
  public:
   // Validates format, version, attributes, shapes; throws Error naming the file.
+  // The file is noted as an input (no output of the run may replace it).
   static Dataset open(const std::string& path);
+  // The same on an HDF5 file image held in memory (fuzzing, tests); `name`
+  // names it in messages.
+  static Dataset open_image(const std::string& bytes, const std::string& name);
   Dataset(Dataset&&) noexcept;
   Dataset& operator=(Dataset&&) noexcept;
   ~Dataset();
@@ -86,8 +90,10 @@ class Dataset {
   const std::vector<SequenceMeta>& sequences() const;
   const SequenceMeta& sequence(const std::string& name) const;  // throws if absent
 
-  // Frames [start, start + count) of a sequence into out[count, rows, cols].
+  // Frames [start, start + count) of a sequence into out[count, rows, cols];
+  // a non-finite value is an Error naming the sequence and frame.
   void read(const std::string& name, int start, int count, float* out) const;
+  // The whole sequence; an Error if it needs more than the available memory.
   PressureSequence read(const std::string& name) const;
   // /floor/<name> (sequence(name).floor must be true; throws Error otherwise).
   PressureSequence read_floor(const std::string& name) const;

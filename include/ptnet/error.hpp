@@ -8,8 +8,10 @@
 // the problem. main() prints it on stderr and exits with status 1.
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace ptnet {
 
@@ -28,5 +30,35 @@ class Error : public std::runtime_error {
     return Error(file + ": " + problem);
   }
 };
+
+// File content for a message: control and non-ASCII bytes escaped (\x1b),
+// cut to `max` characters with "...", in single quotes (unless `quotes` is
+// false). Use it for every piece of a file echoed in an error.
+inline std::string escaped(std::string_view text, std::size_t max = 40, bool quotes = true) {
+  std::string out = quotes ? "'" : "";
+  std::size_t shown = 0;
+  for (unsigned char c : text) {
+    if (shown >= max) {
+      out += "...";
+      break;
+    }
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += char(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+    ++shown;
+  }
+  return quotes ? out + "'" : out;
+}
+
+// A number for a message: at most 6 significant digits ("1e+308", "nan").
+inline std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 }  // namespace ptnet

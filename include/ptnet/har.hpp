@@ -338,20 +338,6 @@ void write_standin(const std::string& path, const StandinOptions& options, bool 
 // (0 = dead), deterministic in the seed.
 std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& options);
 
-// One line of a mocap folder's clips.csv (columns file, subject, category,
-// take required; metres_per_unit, up optional; others ignored, as in
-// ../shared/mocap/clips.csv).
-struct MocapClip {
-  std::string file;            // folder / file
-  std::string subject;         // the performer (CMU subject number)
-  std::string category;        // walking | rom | freestyle | acting
-  int take = 1;
-  double metres_per_unit = 0;  // 0: units detected from the rig
-  std::string up = "y";        // y | z
-};
-// Throws Error "FOLDER/clips.csv:LINE: expected X, found Y" for a bad line.
-std::vector<MocapClip> read_mocap_clips(const std::string& folder);
-
 // ---------------------------------------------------------------- import
 
 // Real recordings into the dataset format (docs/har.md, "Your own

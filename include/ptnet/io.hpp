@@ -4,21 +4,47 @@
 //   write_everything(out.temp_path());
 //   out.commit();                                       // rename into place
 //
-// Outputs are written to a temporary file beside the target and renamed when
-// complete, so a failed run never leaves a half-written file. Without force an
-// existing target is an error.
+// Outputs are written to a temporary file `.NAME.tmpPID` beside the target and
+// renamed when complete, so a failed run never leaves a half-written file.
+// The one place where outputs are guarded (docs/formats.md, "Outputs"):
+// - without force an existing target is an error;
+// - with or without force, a target that is not a regular file (a folder,
+//   FIFO, socket or device) is never replaced;
+// - a target that is the same file (device and inode) as an input of this
+//   run (note_input) is never replaced;
+// - on SIGINT, SIGTERM or SIGHUP the live temporary files are removed before
+//   the process dies; temporary files of the same target left by dead
+//   processes (kill -9) are removed by the next AtomicFile of that target.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace ptnet {
 
-// Reads a whole file; throws Error naming the file when it cannot.
-std::string read_text_file(const std::string& path);
+// Largest text input (BVH, CSV, JSON) read whole into memory.
+inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t(1) << 30;  // 1 GiB
 
-// Throws Error if `path` exists and `force` is false, or if its folder is
-// missing or not writable.
+// Reads a whole file; throws Error naming the file when it cannot, when it is
+// larger than `max_bytes` or than the available memory. Non-regular files
+// (FIFOs) are read up to `max_bytes`.
+std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
+
+// Records `path` (device and inode) as an input of this run (this process):
+// no output may replace it afterwards. Readers of user data call it
+// (datasets, .npy, CSV, BVH, the model a transfer loads); read_text_file
+// alone does not (train --resume rewrites the config.json it read).
+void note_input(const std::string& path);
+
+// Throws Error if `path` exists and `force` is false, if it exists and is not
+// a regular file, if it is an input of this run, or if its folder is missing
+// or not writable.
 void check_output_path(const std::string& path, bool force);
+
+// The same for an output folder (a model or report folder): an existing
+// non-folder is an error; an existing non-empty folder needs `force`.
+void check_output_folder(const std::string& path, bool force);
 
 class AtomicFile {
  public:
@@ -29,14 +55,50 @@ class AtomicFile {
 
   const std::string& temp_path() const { return temp_; }
   const std::string& path() const { return path_; }
-  void commit();  // renames the temporary file onto path()
+  // Renames the temporary file onto path() (checked again: still not an
+  // input, still a regular file or absent). Inside a CommitGroup the rename
+  // waits for the group's commit().
+  void commit();
 
  private:
   std::string path_, temp_;
+  int slot_ = -1;  // signal-cleanup slot
   bool committed_ = false;
+};
+
+// Several outputs that appear together or not at all (a report folder):
+// while a group is alive on this thread, AtomicFile::commit() hands its
+// temporary file to the group; group.commit() renames them all; a group
+// destroyed uncommitted (an exception) removes them.
+class CommitGroup {
+ public:
+  CommitGroup();
+  ~CommitGroup();
+  CommitGroup(const CommitGroup&) = delete;
+  CommitGroup& operator=(const CommitGroup&) = delete;
+  void commit();
+
+ private:
+  friend class AtomicFile;
+  struct Pending {
+    std::string temp, path;
+    int slot;
+  };
+  std::vector<Pending> pending_;
+  CommitGroup* outer_;
 };
 
 // Writes `text` to `path` atomically (see AtomicFile).
 void write_text_file(const std::string& path, const std::string& text, bool force);
+
+// Bytes of memory available to this process now (MemAvailable), or 0 if unknown.
+std::uint64_t available_memory_bytes();
+// Throws Error "FILE: WHAT needs 12 GB, more than the 3.1 GB of available
+// memory" when `bytes` exceed the available memory.
+void check_memory(std::uint64_t bytes, const std::string& file, const std::string& what);
+// a * b, or Error "FILE: WHAT overflows" when it does not fit in 64 bits.
+std::uint64_t checked_mul(std::uint64_t a, std::uint64_t b, const std::string& file, const std::string& what);
+// "512 B", "3.1 MB", "12 GB".
+std::string bytes_text(std::uint64_t bytes);
 
 }  // namespace ptnet

@@ -91,14 +91,24 @@ TORCH_MODULE(PressureTransferNet);
 // Trainable parameters of a module.
 std::int64_t parameter_count(const torch::nn::Module& module);
 
-// Weights (parameters and buffers) to/from a file; load checks names and
-// shapes and throws Error naming the file on mismatch.
+// Weights (parameters and buffers) to/from a file; load verifies the
+// archive's CRC-32s (zip_check.hpp), checks names and shapes and throws Error
+// naming the file on mismatch.
 void save_weights(const PressureTransferNet& net, const std::string& path);
 void load_weights(PressureTransferNet& net, const std::string& path);
 // The same into/out of an archive (checkpoints); `path` names it in errors.
 void write_weights(const PressureTransferNet& net, torch::serialize::OutputArchive& archive);
 void read_weights(PressureTransferNet& net, torch::serialize::InputArchive& archive,
                   const std::string& path);
+
+// Integrity (src/model/integrity.cpp): FNV-1a 64 (16 hex digits) over every
+// parameter and buffer (name, shape, float32 bytes) in registration order.
+std::string weights_digest(const torch::nn::Module& net);
+// Throws Error "PATH: weights do not match the digest in DIR/config.json
+// (corrupt or replaced file)" when `recorded` (a digest, or "") differs from
+// the net's; an empty `recorded` (older models) passes.
+void check_weights_digest(const torch::nn::Module& net, const std::string& recorded, const std::string& path,
+                          const std::string& config_path);
 
 // torch::Device from "cpu" | "cuda" (Error if CUDA is not available).
 torch::Device parse_device(const std::string& text);

@@ -37,6 +37,7 @@ inline constexpr std::array<int, 3> kFastChannels{16, 32, 64};     // conv width
 inline constexpr double kContactKpa = 0.5;  // a cell above this is in contact (the paper's binary R^2)
 inline constexpr const char* kModelFormat = "ptnet-model";
 inline constexpr int kModelVersion = 1;
+inline constexpr std::uint64_t kMaxConfigBytes = std::uint64_t(16) << 20;  // config.json: 16 MiB
 
 // faithful: the paper's network (decoder unpools with the encoder's max-pool
 // indices). skip: the same plus U-Net skip connections (each decoder block
@@ -89,6 +90,10 @@ void validate(const ModelConfig& config);
 std::array<int, 2> pooled_size(const ModelConfig& config, int level);
 // Closed-form number of trainable parameters (equals the module's count).
 std::int64_t parameter_count(const ModelConfig& config);
+// Bytes a model needs in memory (an estimate, for the check before
+// allocating): float32 weights, with `training` their gradients and Adam's
+// two moments, plus the activations of `batch` windows (x 2 for backward).
+std::uint64_t model_memory_bytes(const ModelConfig& config, int batch, bool training);
 // Multiply-adds x 2 of one forward pass over one window (convolutions + FC).
 double forward_flops(const ModelConfig& config);
 
@@ -115,7 +120,18 @@ struct ModelDir {
   nlohmann::json data;     // training data: path, digest, counts
   nlohmann::json options;  // training options
   nlohmann::json metrics;  // final metrics
+  // Digests of the weights (weights_digest, model.hpp) written with them:
+  // {"model.pt": "HEX", "checkpoint.pt": {"epoch": N, "digest": "HEX"}};
+  // checked by transfer, train --init and --resume. Empty in models written
+  // before ptnet 0.1 kept digests (only the archive CRCs are checked then).
+  nlohmann::json integrity;
 };
+
+// The digest recorded in dir.integrity for `file` ("model.pt",
+// "checkpoint.pt"), "" when none; `epoch` gets the checkpoint's epoch (-1).
+std::string recorded_digest(const ModelDir& dir, const std::string& file, int* epoch = nullptr);
+// Records `digest` for `file` (with the checkpoint's epoch when >= 0).
+void record_digest(ModelDir& dir, const std::string& file, const std::string& digest, int epoch = -1);
 
 nlohmann::json to_json(const ModelConfig& config);
 ModelConfig model_config_from_json(const nlohmann::json& j, const std::string& where);
@@ -123,6 +139,8 @@ nlohmann::json to_json(const ModelDir& dir);
 // Reads and validates DIR/config.json (format, version, fields); throws Error
 // naming the file ("model/config.json: missing field \"normalisation\"").
 ModelDir read_model_dir(const std::string& dir);
+// The same on config.json's text; `path` names it, `dir` is the folder.
+ModelDir parse_model_config(const std::string& text, const std::string& path, const std::string& dir);
 
 // Throws Error if a body's attributes are outside the plausible range
 // (kMinHeightCm..kMaxHeightCm, kMinWeightKg..kMaxWeightKg); `what` names it.

@@ -17,6 +17,9 @@
 
 namespace ptnet {
 
+// Largest .npy file read (the available memory is checked too).
+inline constexpr std::uint64_t kMaxNpyBytes = std::uint64_t(64) << 30;  // 64 GiB
+
 struct NpyArray {
   std::vector<std::int64_t> shape;
   std::vector<float> data;  // C order
@@ -25,11 +28,14 @@ struct NpyArray {
 // Throws Error naming the file: bad magic, dtype other than float32, Fortran
 // order, truncated data.
 NpyArray read_npy(const std::string& path);
+// The same on the bytes of a file (`name` names it in messages).
+NpyArray parse_npy(const std::string& bytes, const std::string& name);
 // Atomic write; refuses to overwrite unless force.
 void write_npy(const std::string& path, const NpyArray& array, bool force);
 
 // A [T, rows, cols] float32 array as a sequence on `mat` (rows/cols must
-// match: "x.npy: expected shape [T, 80, 28], found [100, 64, 28]").
+// match: "x.npy: expected shape [T, 80, 28], found [100, 64, 28]"); NaN or
+// Inf is an Error, as in a dataset.
 PressureSequence read_npy_sequence(const std::string& path, const MatSpec& mat, double fps);
 void write_npy_sequence(const std::string& path, const PressureSequence& seq, bool force);
 

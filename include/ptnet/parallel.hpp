@@ -18,6 +18,10 @@
 
 namespace ptnet {
 
+// The most threads any option may ask for: 4 x the hardware threads (at
+// least 4). More only adds scheduling overhead and memory.
+inline int max_threads() { return 4 * int(std::max(1u, std::thread::hardware_concurrency())); }
+
 template <class F>
 void parallel_for(int n, int threads, F f) {
   if (n <= 0) return;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace ptnet {
@@ -48,6 +49,12 @@ inline void zero_below(PressureSequence& s, double kpa) {
   for (float& v : s.kpa)
     if (v < kpa) v = 0.0f;
 }
+
+// Every input format rejects NaN and infinite readings alike: throws Error
+// "FILE: WHAT: non-finite value (NaN or Inf) in frame T" (T counted from
+// `first_frame`). kpa: [n / cells frames, cells].
+void check_finite(const float* kpa, std::size_t n, int cells, const std::string& file, const std::string& what,
+                  std::size_t first_frame = 0);
 
 // Body-scale alignment of pressure maps from one body to another, for
 // retargeted motion: the same motion on a body `scale` times as tall lands

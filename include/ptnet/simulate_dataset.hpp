@@ -63,6 +63,8 @@ struct ClipRow {
 // positive integer, found 'x'"; a row whose file does not exist is
 // "clips.csv:5: clip file 'missing.bvh' not found".
 std::vector<ClipRow> read_clips_csv(const std::string& path);
+// The same on CSV text; files are resolved against `path`'s folder.
+std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string& path);
 
 // A category guessed from a file name: the stem contains walk, rom/range/
 // exercise, dance/freestyle or act(ing); "" if none.

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "ptnet/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 
@@ -47,13 +48,7 @@ bool parse_number(const std::string& text, double& value) {
   return end == text.c_str() + text.size() && std::isfinite(value);
 }
 
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-
-std::string number_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
+std::string quote(const std::string& s) { return escaped(s); }
 
 // The problem with a body's values, or "" if it is valid.
 std::string problem(const BodySpec& b) {
@@ -100,61 +95,46 @@ BodySpec parse_body_attributes(const std::string& text) {
 }
 
 std::vector<BodySpec> read_bodies_csv(const std::string& path) {
-  std::string text = read_text_file(path);
-  std::istringstream in(text);
-  std::string line;
-  long number = 0;
-  bool header_seen = false, has_role = false;
+  note_input(path);
+  return parse_bodies_csv(read_text_file(path), path);
+}
+
+std::vector<BodySpec> parse_bodies_csv(const std::string& text, const std::string& path) {
+  const CsvTable t = parse_csv(text, path);
+  const std::string columns = "id,sex,height_cm,weight_kg[,role]";
+  const int c_id = t.required("id", columns), c_sex = t.required("sex", columns),
+            c_height = t.required("height_cm", columns), c_weight = t.required("weight_kg", columns),
+            c_role = t.column("role");
   std::vector<BodySpec> bodies;
   std::set<std::string> ids;
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (trim(line).empty()) continue;
-    auto f = split(line, ',');
-    if (!header_seen) {
-      std::string h = lower(trim(line));
-      h.erase(std::remove(h.begin(), h.end(), ' '), h.end());
-      if (h == "id,sex,height_cm,weight_kg") {
-        has_role = false;
-      } else if (h == "id,sex,height_cm,weight_kg,role") {
-        has_role = true;
-      } else {
-        throw Error::at(path, number, "header id,sex,height_cm,weight_kg[,role]", quote(trim(line)));
-      }
-      header_seen = true;
-      continue;
-    }
-    std::size_t want = has_role ? 5 : 4;
-    if (f.size() != want)
-      throw Error::at(path, number, std::to_string(want) + " columns", std::to_string(f.size()));
+  for (const CsvRow& row : t.rows) {
+    const long number = row.line;
+    auto f = [&](int c) -> const std::string& { return CsvTable::field(row, c); };
     BodySpec b;
-    b.id = f[0];
+    b.id = f(c_id);
     if (b.id.empty()) throw Error::at(path, number, "a body id", "an empty id");
     try {
-      b.sex = parse_sex(f[1]);
+      b.sex = parse_sex(f(c_sex));
     } catch (const Error&) {
-      throw Error::at(path, number, "sex female or male", quote(f[1]));
+      throw Error::at(path, number, "sex female or male", escaped(f(c_sex)));
     }
-    if (!parse_number(f[2], b.height_cm))
-      throw Error::at(path, number, "height_cm as a number", quote(f[2]));
-    if (!parse_number(f[3], b.weight_kg))
-      throw Error::at(path, number, "weight_kg as a number", quote(f[3]));
+    if (!parse_number(f(c_height), b.height_cm))
+      throw Error::at(path, number, "height_cm as a number", escaped(f(c_height)));
+    if (!parse_number(f(c_weight), b.weight_kg))
+      throw Error::at(path, number, "weight_kg as a number", escaped(f(c_weight)));
     if (b.height_cm < kMinHeightCm || b.height_cm > kMaxHeightCm)
-      throw Error::at(path, number, "height_cm in 100-230", f[2]);
+      throw Error::at(path, number, "height_cm in 100-230", number_text(b.height_cm));
     if (b.weight_kg < kMinWeightKg || b.weight_kg > kMaxWeightKg)
-      throw Error::at(path, number, "weight_kg in 20-250", f[3]);
-    if (has_role) {
-      b.role = lower(f[4]);
+      throw Error::at(path, number, "weight_kg in 20-250", number_text(b.weight_kg));
+    if (c_role >= 0) {
+      b.role = lower(f(c_role));
       if (b.role.empty()) b.role = "retargeted";
       if (b.role != "retargeted" && b.role != "original")
-        throw Error::at(path, number, "role retargeted or original", quote(f[4]));
+        throw Error::at(path, number, "role retargeted or original", escaped(f(c_role)));
     }
-    if (!ids.insert(b.id).second)
-      throw Error::at(path, number, "a unique id", "duplicate id " + quote(b.id));
+    if (!ids.insert(b.id).second) throw Error::at(path, number, "a unique id", "duplicate id " + escaped(b.id));
     bodies.push_back(b);
   }
-  if (!header_seen) throw Error::at(path, 1, "header id,sex,height_cm,weight_kg[,role]", "an empty file");
   if (bodies.empty()) throw Error::in(path, "no bodies after the header");
   return bodies;
 }
@@ -165,7 +145,7 @@ std::string format_bodies_csv(const std::vector<BodySpec>& bodies) {
     validate(b);
     char buf[64];
     std::snprintf(buf, sizeof buf, ",%.10g,%.10g,", b.height_cm, b.weight_kg);
-    out += b.id + "," + sex_name(b.sex) + buf + b.role + "\n";
+    out += csv_field(b.id) + "," + sex_name(b.sex) + buf + b.role + "\n";
   }
   return out;
 }

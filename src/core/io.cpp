@@ -1,59 +1,263 @@
+// Reading inputs and guarding outputs (ptnet/io.hpp): the one place where a
+// run decides what it may read into memory and what it may replace.
 #include "ptnet/io.hpp"
 
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <mutex>
 
 #include "ptnet/error.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;
 
-std::string read_text_file(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error::in(path, "no such file");
-  if (fs::is_directory(path, ec)) throw Error::in(path, "is a folder, expected a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error::in(path, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Error::in(path, "read error");
-  return ss.str();
+namespace {
+
+// ------------------------------------------------------------ inputs
+
+struct FileId {
+  dev_t dev;
+  ino_t ino;
+  std::string path;
+};
+std::mutex g_inputs_mutex;
+std::vector<FileId> g_inputs;
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  return "not a regular file";
 }
 
-void check_output_path(const std::string& path, bool force) {
+// Throws if `path` exists as something an output may not replace: not a
+// regular file, or (after the `exists` check of check_output_path) an input.
+void check_regular(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return;  // absent (or a dangling link): a new file
+  if (!S_ISREG(st.st_mode))
+    throw Error::in(path, std::string("is ") + kind_of(st.st_mode) +
+                              ", not a regular file; refusing to replace it (even with --force)");
+}
+
+void check_not_input(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return;
+  std::lock_guard<std::mutex> lock(g_inputs_mutex);
+  for (const FileId& in : g_inputs) {
+    if (in.dev != st.st_dev || in.ino != st.st_ino) continue;
+    struct stat now;  // the input still there (not deleted and its inode reused)
+    if (::stat(in.path.c_str(), &now) != 0 || now.st_dev != in.dev || now.st_ino != in.ino) continue;
+    throw Error::in(path, "is the same file as the input " + in.path +
+                                "; refusing to replace it (even with --force): write the output elsewhere");
+  }
+}
+
+// ------------------------------------------------------------ signal cleanup
+//
+// Live temporary files sit in fixed slots that the signal handler can walk
+// without allocating: state 0 free, 1 being written, 2 holds a path.
+
+constexpr int kSlots = 64;
+constexpr std::size_t kSlotPath = 4096;
+struct Slot {
+  std::atomic<int> state{0};
+  char path[kSlotPath];
+};
+Slot g_slots[kSlots];
+
+extern "C" void remove_temps_and_die(int sig) {
+  for (Slot& s : g_slots)
+    if (s.state.load() == 2) ::unlink(s.path);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);  // delivered when the handler returns: the usual death by signal
+}
+
+void install_handlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      if (::sigaction(sig, nullptr, &old) != 0) continue;
+      if (old.sa_handler != SIG_DFL) continue;  // ignored, or somebody else's handler: leave it
+      struct sigaction sa {};
+      sa.sa_handler = remove_temps_and_die;
+      sigemptyset(&sa.sa_mask);
+      ::sigaction(sig, &sa, nullptr);
+    }
+  });
+}
+
+int claim_slot(const std::string& path) {
+  install_handlers();
+  if (path.size() >= kSlotPath) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int free = 0;
+    if (g_slots[i].state.compare_exchange_strong(free, 1)) {
+      std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
+      g_slots[i].state.store(2);
+      return i;
+    }
+  }
+  return -1;  // more than kSlots live temporaries: left to the stale-file sweep
+}
+
+void release_slot(int slot) {
+  if (slot >= 0) g_slots[slot].state.store(0);
+}
+
+// Removes `.NAME.tmpPID` files beside `target` whose process is gone.
+void remove_stale_temps(const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".tmp";
+  fs::path folder = target.parent_path();
+  if (folder.empty()) folder = ".";
   std::error_code ec;
-  if (fs::exists(path, ec) && !force)
-    throw Error::in(path, "exists; pass --force to overwrite");
+  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(digits);
+    if (pid <= 0 || pid == long(::getpid())) continue;
+    if (::kill(pid_t(pid), 0) == -1 && errno == ESRCH) {
+      std::error_code rm;
+      fs::remove(it->path(), rm);
+    }
+  }
+}
+
+thread_local CommitGroup* t_group = nullptr;
+
+void check_replaceable(const std::string& path) {
+  check_regular(path);
+  check_not_input(path);
+}
+
+void rename_into_place(const std::string& temp, const std::string& path) {
+  check_replaceable(path);
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) throw Error::in(path, "cannot rename temporary file into place: " + ec.message());
+}
+
+}  // namespace
+
+// ------------------------------------------------------------ reading
+
+std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0)
+    throw Error::in(path, errno == ENOENT ? std::string("no such file") : std::string("cannot open: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throw Error::in(path, "is a folder, expected a file");
+  const bool regular = S_ISREG(st.st_mode);
+  if (regular && std::uint64_t(st.st_size) > max_bytes)
+    throw Error::in(path, bytes_text(std::uint64_t(st.st_size)) + ", more than the " + bytes_text(max_bytes) +
+                              " this kind of file may have");
+  if (regular) check_memory(std::uint64_t(st.st_size), path, "reading the file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error::in(path, std::string("cannot open: ") + std::strerror(errno));
+  std::string text;
+  if (regular) text.reserve(std::size_t(st.st_size));
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, std::size_t(in.gcount()));
+    if (text.size() > max_bytes)
+      throw Error::in(path, "more than the " + bytes_text(max_bytes) + " this kind of file may have (" +
+                                (regular ? "it grew while read" : "not a regular file: reading stopped") + ")");
+  }
+  if (in.bad()) throw Error::in(path, "read error");
+  return text;
+}
+
+void note_input(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return;
+  std::lock_guard<std::mutex> lock(g_inputs_mutex);
+  for (FileId& in : g_inputs)
+    if (in.dev == st.st_dev && in.ino == st.st_ino) {
+      in.path = path;  // the latest name (an older one may be gone, its inode reused)
+      return;
+    }
+  g_inputs.push_back({st.st_dev, st.st_ino, path});
+}
+
+// ------------------------------------------------------------ outputs
+
+void check_output_path(const std::string& path, bool force) {
+  check_regular(path);
+  std::error_code ec;
+  if (fs::exists(path, ec) && !force) throw Error::in(path, "exists; pass --force to overwrite");
+  check_not_input(path);
   fs::path parent = fs::path(path).parent_path();
   if (parent.empty()) parent = ".";
   if (!fs::is_directory(parent, ec)) throw Error::in(path, "folder " + parent.string() + " does not exist");
   if (::access(parent.c_str(), W_OK) != 0) throw Error::in(path, "folder " + parent.string() + " is not writable");
 }
 
+void check_output_folder(const std::string& path, bool force) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return;
+  if (!fs::is_directory(path, ec)) throw Error::in(path, "exists and is not a folder");
+  if (!force && !fs::is_empty(path, ec)) throw Error::in(path, "exists; pass --force to overwrite");
+}
+
 AtomicFile::AtomicFile(std::string path, bool force) : path_(std::move(path)) {
   check_output_path(path_, force);
   fs::path p(path_);
+  remove_stale_temps(p);
   temp_ = (p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(::getpid()))).string();
+  slot_ = claim_slot(temp_);
 }
 
 AtomicFile::~AtomicFile() {
   if (!committed_) {
     std::error_code ec;
     fs::remove(temp_, ec);
+    release_slot(slot_);
   }
 }
 
 void AtomicFile::commit() {
-  std::error_code ec;
-  fs::rename(temp_, path_, ec);
-  if (ec) throw Error::in(path_, "cannot rename temporary file into place: " + ec.message());
+  if (t_group) {
+    t_group->pending_.push_back({temp_, path_, slot_});
+    committed_ = true;  // the group owns the temporary file now
+    return;
+  }
+  rename_into_place(temp_, path_);
   committed_ = true;
+  release_slot(slot_);
+}
+
+CommitGroup::CommitGroup() : outer_(t_group) { t_group = this; }
+
+CommitGroup::~CommitGroup() {
+  t_group = outer_;
+  for (const Pending& p : pending_) {
+    std::error_code ec;
+    fs::remove(p.temp, ec);
+    release_slot(p.slot);
+  }
+}
+
+void CommitGroup::commit() {
+  t_group = outer_;  // no more adoptions
+  for (const Pending& p : pending_) check_replaceable(p.path);  // all or (nearly) nothing
+  while (!pending_.empty()) {
+    const Pending p = pending_.front();
+    rename_into_place(p.temp, p.path);
+    release_slot(p.slot);
+    pending_.erase(pending_.begin());
+  }
 }
 
 void write_text_file(const std::string& path, const std::string& text, bool force) {
@@ -66,6 +270,41 @@ void write_text_file(const std::string& path, const std::string& text, bool forc
     if (!f) throw Error::in(path, "write failed (disk full?)");
   }
   out.commit();
+}
+
+// ------------------------------------------------------------ sizes
+
+std::uint64_t available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  std::uint64_t kb = 0;
+  std::string unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024;
+  const long pages = ::sysconf(_SC_AVPHYS_PAGES), size = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? std::uint64_t(pages) * std::uint64_t(size) : 0;
+}
+
+void check_memory(std::uint64_t bytes, const std::string& file, const std::string& what) {
+  const std::uint64_t available = available_memory_bytes();
+  if (available > 0 && bytes > available)
+    throw Error::in(file, what + " needs " + bytes_text(bytes) + ", more than the " + bytes_text(available) +
+                              " of available memory");
+}
+
+std::uint64_t checked_mul(std::uint64_t a, std::uint64_t b, const std::string& file, const std::string& what) {
+  std::uint64_t r = 0;
+  if (__builtin_mul_overflow(a, b, &r)) throw Error::in(file, what + " overflows 64 bits");
+  return r;
+}
+
+std::string bytes_text(std::uint64_t bytes) {
+  char buf[32];
+  if (bytes < 1000) std::snprintf(buf, sizeof buf, "%llu B", static_cast<unsigned long long>(bytes));
+  else if (bytes < 1000000) std::snprintf(buf, sizeof buf, "%.3g kB", double(bytes) / 1e3);
+  else if (bytes < 1000000000) std::snprintf(buf, sizeof buf, "%.3g MB", double(bytes) / 1e6);
+  else std::snprintf(buf, sizeof buf, "%.3g GB", double(bytes) / 1e9);
+  return buf;
 }
 
 }  // namespace ptnet

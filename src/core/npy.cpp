@@ -36,7 +36,11 @@ std::string dict_value(const std::string& header, const std::string& key, const 
 }  // namespace
 
 NpyArray read_npy(const std::string& path) {
-  const std::string bytes = read_text_file(path);
+  note_input(path);
+  return parse_npy(read_text_file(path, kMaxNpyBytes), path);
+}
+
+NpyArray parse_npy(const std::string& bytes, const std::string& path) {
   if (bytes.size() < 10 || std::memcmp(bytes.data(), "\x93NUMPY", 6) != 0)
     throw Error::in(path, "not a .npy file (expected the \\x93NUMPY magic)");
   const int major = static_cast<unsigned char>(bytes[6]);
@@ -57,12 +61,14 @@ NpyArray read_npy(const std::string& path) {
   const std::string header = bytes.substr(offset, header_len);
   const std::string descr = dict_value(header, "descr", path);
   if (descr != "'<f4'" && descr != "'|f4'")
-    throw Error::in(path, "expected dtype float32 ('<f4'), found " + descr);
+    throw Error::in(path, "expected dtype float32 ('<f4'), found " + escaped(descr, 40, false));
   if (dict_value(header, "fortran_order", path) != "False")
     throw Error::in(path, "Fortran-order arrays are not supported (save with C order)");
   std::string shape = dict_value(header, "shape", path);
+  if (shape.size() < 2 || shape.front() != '(' || shape.back() != ')')
+    throw Error::in(path, "npy header: bad shape " + escaped(shape));
   NpyArray a;
-  std::int64_t count = 1;
+  std::uint64_t count = 1;
   {
     std::string inner = shape.substr(1, shape.size() - 2);
     std::stringstream ss(inner);
@@ -75,16 +81,16 @@ NpyArray read_npy(const std::string& path) {
         std::size_t used;
         v = std::stoll(item.substr(b), &used);
       } catch (const std::exception&) {
-        throw Error::in(path, "npy header: bad shape " + shape);
+        throw Error::in(path, "npy header: bad shape " + escaped(shape));
       }
-      if (v < 0) throw Error::in(path, "npy header: bad shape " + shape);
+      if (v < 0) throw Error::in(path, "npy header: bad shape " + escaped(shape));
       a.shape.push_back(v);
-      count *= v;
+      count = checked_mul(count, std::uint64_t(v), path, "npy header: the shape's element count");
     }
   }
   const std::size_t data_at = offset + header_len;
-  const std::size_t need = std::size_t(count) * sizeof(float);
-  if (bytes.size() - data_at != need)
+  const std::uint64_t need = checked_mul(count, sizeof(float), path, "npy header: the shape's byte count");
+  if (std::uint64_t(bytes.size() - data_at) != need)
     throw Error::in(path, "expected " + std::to_string(need) + " data bytes for shape " +
                               shape_text(a.shape) + ", found " + std::to_string(bytes.size() - data_at));
   a.data.resize(std::size_t(count));
@@ -129,6 +135,7 @@ PressureSequence read_npy_sequence(const std::string& path, const MatSpec& mat, 
   s.mat = mat;
   s.fps = fps;
   s.kpa = std::move(a.data);
+  check_finite(s.kpa.data(), s.kpa.size(), mat.cells(), path, "");
   return s;
 }
 

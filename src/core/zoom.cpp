@@ -8,7 +8,7 @@ namespace ptnet {
 
 void zoom_frames(const float* in, float* out, int frames, int rows, int cols, double scale, double gain) {
   if (!(scale > 0) || !std::isfinite(scale) || !std::isfinite(gain))
-    throw Error("zoom: scale must be > 0 and finite, found " + std::to_string(scale));
+    throw Error("zoom: scale must be > 0 and finite, found " + number_text(scale));
   // Output cell (r, c) samples the input at centre + (r - centre) / scale, in
   // cell-centre coordinates; bilinear weights per row and column, precomputed.
   const double cr = 0.5 * (rows - 1), cc = 0.5 * (cols - 1);

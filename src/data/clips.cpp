@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "ptnet/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/simulate_dataset.hpp"
@@ -17,26 +18,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string trim(const std::string& s) {
-  std::size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
-  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
-}
-
 std::string lower(std::string s) {
   for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   return s;
 }
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::string field;
-  std::istringstream in(line);
-  while (std::getline(in, field, ',')) out.push_back(trim(field));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
-
-std::string quote(const std::string& s) { return "'" + s + "'"; }
 
 bool is_bvh(const fs::path& p) { return lower(p.extension().string()) == ".bvh"; }
 
@@ -50,70 +35,59 @@ std::string key_of(const std::string& path) {
 }  // namespace
 
 std::vector<ClipRow> read_clips_csv(const std::string& path) {
-  const std::string text = read_text_file(path);
+  note_input(path);
+  return parse_clips_csv(read_text_file(path), path);
+}
+
+std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string& path) {
+  const CsvTable t = parse_csv(text, path);
   const fs::path folder = fs::path(path).parent_path();
-  std::istringstream in(text);
-  std::string line;
-  long number = 0;
-  std::map<std::string, int> column;
+  const std::string columns = "file,subject,category,take[,metres_per_unit,up]";
+  const int c_file = t.required("file", columns), c_subject = t.required("subject", columns),
+            c_category = t.required("category", columns), c_take = t.required("take", columns),
+            c_mpu = t.column("metres_per_unit"), c_up = t.column("up");
   std::vector<ClipRow> rows;
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (trim(line).empty() || trim(line)[0] == '#') continue;
-    const auto f = split_csv(line);
-    if (column.empty()) {
-      for (std::size_t i = 0; i < f.size(); ++i) column[lower(f[i])] = int(i);
-      for (const char* need : {"file", "subject", "category", "take"})
-        if (!column.count(need))
-          throw Error::at(path, number, "a header with columns file,subject,category,take", quote(trim(line)));
-      continue;
-    }
-    if (f.size() != column.size())
-      throw Error::at(path, number, std::to_string(column.size()) + " columns", std::to_string(f.size()));
-    auto get = [&](const char* name) {
-      auto it = column.find(name);
-      return it == column.end() ? std::string() : f[std::size_t(it->second)];
-    };
+  for (const CsvRow& row : t.rows) {
+    const long number = row.line;
+    auto get = [&](int c) -> const std::string& { return CsvTable::field(row, c); };
     ClipRow r;
     r.line = number;
-    const std::string file = get("file");
+    const std::string& file = get(c_file);
     if (file.empty()) throw Error::at(path, number, "a file name", "an empty field");
     r.file = (fs::path(file).is_absolute() ? fs::path(file) : folder / file).lexically_normal().string();
-    r.subject = get("subject");
-    r.category = get("category");
+    r.subject = get(c_subject);
+    if (r.subject.empty()) throw Error::at(path, number, "a subject", "an empty field");
     try {
-      parse_category(r.category);
+      r.category = category_name(parse_category(lower(get(c_category))));
     } catch (const Error&) {
-      throw Error::at(path, number, "category walking, rom, freestyle or acting", quote(r.category));
+      throw Error::at(path, number, "category walking, rom, freestyle or acting", escaped(get(c_category)));
     }
-    const std::string take = get("take");
+    const std::string& take = get(c_take);
     std::size_t used = 0;
-    int t = 0;
+    long t_value = 0;
     try {
-      t = std::stoi(take, &used);
+      t_value = std::stol(take, &used);
     } catch (...) {
       used = 0;
     }
-    if (used != take.size() || take.empty() || t < 1)
-      throw Error::at(path, number, "take as a positive integer", quote(take));
-    r.take = t;
-    const std::string mpu = get("metres_per_unit");
+    if (used != take.size() || take.empty() || t_value < 1 || t_value > 1000000)
+      throw Error::at(path, number, "take as an integer in 1-1000000", escaped(take));
+    r.take = int(t_value);
+    const std::string& mpu = get(c_mpu);
     if (!mpu.empty()) {
       char* end = nullptr;
       r.metres_per_unit = std::strtod(mpu.c_str(), &end);
       if (end != mpu.c_str() + mpu.size() || !(r.metres_per_unit > 0) || !std::isfinite(r.metres_per_unit))
-        throw Error::at(path, number, "metres_per_unit as a positive number", quote(mpu));
+        throw Error::at(path, number, "metres_per_unit as a positive number", escaped(mpu));
     }
-    r.up = lower(get("up"));
-    if (!r.up.empty() && r.up != "y" && r.up != "z")
-      throw Error::at(path, number, "up y or z", quote(get("up")));
+    r.up = lower(get(c_up));
+    if (!r.up.empty() && r.up != "y" && r.up != "z") throw Error::at(path, number, "up y or z", escaped(get(c_up)));
     std::error_code ec;
     if (!fs::is_regular_file(r.file, ec))
-      throw Error(path + ":" + std::to_string(number) + ": clip file " + quote(file) + " not found");
+      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " not found");
     rows.push_back(r);
   }
-  if (column.empty()) throw Error::in(path, "empty clips CSV, expected a header file,subject,category,take");
+  if (rows.empty()) throw Error::in(path, "no clips listed after the header");
   return rows;
 }
 

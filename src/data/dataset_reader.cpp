@@ -10,6 +10,7 @@
 #include "data/h5_util.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;
@@ -17,6 +18,8 @@ namespace fs = std::filesystem;
 namespace {
 constexpr size_t kChunkCacheBytes = 4u << 20;  // per open sequence: ~14 chunks of 32 frames
 constexpr size_t kOpenSequences = 16;          // dataset handles (each with its chunk cache) kept open
+constexpr hsize_t kMaxFrames = 0x7fffffff;     // frames of one sequence (an int)
+constexpr long kMaxCells = 1L << 24;           // cells of one mat frame
 
 std::string shape_text(const std::vector<hsize_t>& dims) {
   std::string s = "[";
@@ -84,6 +87,7 @@ struct Dataset::Impl {
   H5::H5File file;
   mutable std::vector<std::pair<std::string, H5::DataSet>> open_sets;  // most recent last
 
+  void read_structure();
   void read_root();
   void read_bodies();
   void read_sequences();
@@ -99,7 +103,7 @@ void Dataset::Impl::read_root() {
     throw Error::in(path, "not a ptnet dataset (HDF5 file without a 'format' attribute)");
   std::string format = h5::read_string_attr(root, "format", path, where);
   if (format != kDatasetFormat)
-    throw Error::in(path, "not a ptnet dataset (format '" + format + "', expected '" +
+    throw Error::in(path, "not a ptnet dataset (format " + escaped(format) + ", expected '" +
                               kDatasetFormat + "')");
   long version = h5::read_integer_attr(root, "version", path, where);
   if (version != kDatasetVersion)
@@ -112,13 +116,16 @@ void Dataset::Impl::read_root() {
   if (rows <= 0 || cols <= 0 || rows > 100000 || cols > 100000)
     throw Error::in(path, "root attributes rows " + std::to_string(rows) + ", cols " +
                               std::to_string(cols) + " must be positive");
+  if (rows * cols > kMaxCells)
+    throw Error::in(path, "root attributes rows " + std::to_string(rows) + " x cols " + std::to_string(cols) +
+                              ": more than the " + std::to_string(kMaxCells) + " cells a mat may have");
   info.mat.rows = int(rows);
   info.mat.cols = int(cols);
   info.mat.pitch_m = h5::read_number_attr(root, "pitch_m", path, where);
   if (!(info.mat.pitch_m > 0)) throw Error::in(path, "root attribute 'pitch_m' must be positive");
   std::string units = h5::read_string_attr(root, "units", path, where);
   if (units != "kPa")
-    throw Error::in(path, "root attribute 'units' is '" + units + "', expected 'kPa'");
+    throw Error::in(path, "root attribute 'units' is " + escaped(units) + ", expected 'kPa'");
   info.generator = h5::has_attr(root, "generator")
                        ? h5::read_string_attr(root, "generator", path, where) : "";
   info.config_json = h5::has_attr(root, "config")
@@ -153,14 +160,14 @@ void Dataset::Impl::read_bodies() {
   if (role_i >= 0 && type.getMemberClass(role_i) == H5T_STRING)
     roles = read_string_column(ds, type, role_i, n);
   for (size_t i = 0; i < n; ++i) {
-    const std::string where = "/bodies row " + std::to_string(i) + " ('" + ids[i] + "')";
+    const std::string where = "/bodies row " + std::to_string(i) + " (" + escaped(ids[i]) + ")";
     if (ids[i].empty()) throw Error::in(path, "/bodies row " + std::to_string(i) + ": empty id");
     if (sex[i] != 0 && sex[i] != 1)
-      throw Error::in(path, where + ": sex " + std::to_string(sex[i]) + ", expected 0 (female) or 1 (male)");
+      throw Error::in(path, where + ": sex " + number_text(sex[i]) + ", expected 0 (female) or 1 (male)");
     if (!(height[i] >= kMinHeightCm && height[i] <= kMaxHeightCm))
-      throw Error::in(path, where + ": height_cm " + std::to_string(height[i]) + " outside 100-230");
+      throw Error::in(path, where + ": height_cm " + number_text(height[i]) + " outside 100-230");
     if (!(weight[i] >= kMinWeightKg && weight[i] <= kMaxWeightKg))
-      throw Error::in(path, where + ": weight_kg " + std::to_string(weight[i]) + " outside 20-250");
+      throw Error::in(path, where + ": weight_kg " + number_text(weight[i]) + " outside 20-250");
     if (!body_index.emplace(ids[i], bodies.size()).second)
       throw Error::in(path, where + ": id appears twice");
     bodies.push_back(BodySpec{ids[i], sex[i] == 1 ? Sex::male : Sex::female, height[i], weight[i],
@@ -176,7 +183,7 @@ void Dataset::Impl::read_sequences() {
   for (hsize_t i = 0; i < n; ++i) {
     SequenceMeta m;
     m.name = group.getObjnameByIdx(i);
-    const std::string where = "sequence '" + m.name + "'";
+    const std::string where = "sequence " + escaped(m.name, 80);
     if (group.childObjType(m.name) != H5O_TYPE_DATASET)
       throw Error::in(path, "/sequences/" + m.name + " is not a dataset");
     H5::DataSet ds = group.openDataSet(m.name);
@@ -189,12 +196,15 @@ void Dataset::Impl::read_sequences() {
                                 std::to_string(info.mat.rows) + ", " +
                                 std::to_string(info.mat.cols) + "] (root attributes rows, cols)");
     if (dims[0] == 0) throw Error::in(path, where + " has no frames");
+    if (dims[0] > hsize_t(kMaxFrames))
+      throw Error::in(path, where + " has " + std::to_string(dims[0]) + " frames, more than the " +
+                                std::to_string(kMaxFrames) + " a sequence may have");
     if (ds.getTypeClass() != H5T_FLOAT || ds.getFloatType().getSize() != 4)
       throw Error::in(path, where + " is not float32");
     m.frames = int(dims[0]);
     m.body_id = h5::read_string_attr(ds, "body_id", path, where);
     if (!body_index.count(m.body_id))
-      throw Error::in(path, where + ": body_id '" + m.body_id + "' not in /bodies");
+      throw Error::in(path, where + ": body_id " + escaped(m.body_id) + " not in /bodies");
     m.motion_id = h5::read_string_attr(ds, "motion_id", path, where);
     m.category = h5::read_string_attr(ds, "category", path, where);
     m.take = int(h5::read_integer_attr(ds, "take", path, where));
@@ -253,11 +263,26 @@ Dataset::Dataset(Dataset&&) noexcept = default;
 Dataset& Dataset::operator=(Dataset&&) noexcept = default;
 Dataset::~Dataset() = default;
 
+// Reads and validates everything but the frames from the open file.
+void Dataset::Impl::read_structure() {
+  try {
+    read_root();
+    read_bodies();
+    read_sequences();
+    read_floors();
+  } catch (const H5::Exception& e) {
+    std::string why = h5::error_stack_text();
+    throw Error::in(path, "damaged HDF5 file: " + (why.empty() ? e.getFuncName() + ": " + e.getDetailMsg() : why));
+  }
+}
+
 Dataset Dataset::open(const std::string& path) {
   h5::quiet();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error::in(path, "no such file");
   if (fs::is_directory(path, ec)) throw Error::in(path, "is a folder, expected an HDF5 dataset file");
+  if (!fs::is_regular_file(path, ec)) throw Error::in(path, "is not a regular file, expected an HDF5 dataset file");
+  note_input(path);
   bool is_hdf5 = false;
   try {
     is_hdf5 = H5::H5File::isHdf5(path);
@@ -278,15 +303,25 @@ Dataset Dataset::open(const std::string& path) {
     }
     throw Error::in(path, "damaged HDF5 file: " + (why.empty() ? "cannot open" : why));
   }
+  d.impl_->read_structure();
+  return d;
+}
+
+Dataset Dataset::open_image(const std::string& bytes, const std::string& name) {
+  h5::quiet();
+  Dataset d;
+  d.impl_->path = name;
   try {
-    d.impl_->read_root();
-    d.impl_->read_bodies();
-    d.impl_->read_sequences();
-    d.impl_->read_floors();
-  } catch (const H5::Exception& e) {
-    std::string why = h5::error_stack_text();
-    throw Error::in(path, "damaged HDF5 file: " + (why.empty() ? e.getFuncName() + ": " + e.getDetailMsg() : why));
+    H5::FileAccPropList fapl;
+    if (H5Pset_fapl_core(fapl.getId(), 1 << 16, /*backing_store=*/0) < 0 ||
+        H5Pset_file_image(fapl.getId(), const_cast<char*>(bytes.data()), bytes.size()) < 0)
+      throw Error::in(name, "cannot set up an in-memory HDF5 file");
+    d.impl_->file = H5::H5File(name, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, fapl);
+  } catch (const H5::Exception&) {
+    const std::string why = h5::error_stack_text();
+    throw Error::in(name, "damaged HDF5 file: " + (why.empty() ? "cannot open" : why));
   }
+  d.impl_->read_structure();
   return d;
 }
 
@@ -337,17 +372,14 @@ void Dataset::Impl::read_block(const H5::DataSet& ds, const std::string& what, i
   fspace.selectHyperslab(H5S_SELECT_SET, dims, offset);
   H5::DataSpace mspace(3, dims);
   ds.read(out, H5::PredType::NATIVE_FLOAT, mspace, fspace);
-  const size_t n = size_t(count) * mat.cells();
-  for (size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(out[i])) {
-      size_t t = start + i / mat.cells();
-      throw Error::in(path, what + ": non-finite value (NaN or Inf) in frame " + std::to_string(t));
-    }
-  }
+  check_finite(out, size_t(count) * mat.cells(), mat.cells(), path, what, size_t(start));
 }
 
 PressureSequence Dataset::read(const std::string& name) const {
   const SequenceMeta& m = sequence(name);
+  check_memory(checked_mul(std::uint64_t(m.frames), std::uint64_t(impl_->info.mat.cells()) * sizeof(float),
+                           impl_->path, "sequence '" + name + "'"),
+               impl_->path, "sequence '" + name + "'");
   PressureSequence seq(impl_->info.mat, m.frames, impl_->info.fps);
   read(name, 0, m.frames, seq.kpa.data());
   return seq;

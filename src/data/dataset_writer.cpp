@@ -24,9 +24,9 @@ void check_body(const std::string& file, const BodySpec& b) {
   if (b.sex != Sex::female && b.sex != Sex::male)
     throw Error::in(file, where + ": sex must be female (0) or male (1)");
   if (!(b.height_cm >= kMinHeightCm && b.height_cm <= kMaxHeightCm))
-    throw Error::in(file, where + ": height_cm " + std::to_string(b.height_cm) + " outside 100-230");
+    throw Error::in(file, where + ": height_cm " + number_text(b.height_cm) + " outside 100-230");
   if (!(b.weight_kg >= kMinWeightKg && b.weight_kg <= kMaxWeightKg))
-    throw Error::in(file, where + ": weight_kg " + std::to_string(b.weight_kg) + " outside 20-250");
+    throw Error::in(file, where + ": weight_kg " + number_text(b.weight_kg) + " outside 20-250");
 }
 
 // /bodies: a packed compound of fixed-length UTF-8 strings and numbers, so
@@ -77,8 +77,8 @@ void check_frames(const std::string& path, const std::string& where, const Datas
                               std::to_string(seq.mat.cols) + " differs from the dataset's " +
                               std::to_string(mat.rows) + " x " + std::to_string(mat.cols));
   if (std::abs(seq.fps - info.fps) > 1e-9 * info.fps)
-    throw Error::in(path, where + ": fps " + std::to_string(seq.fps) + " differs from the dataset's " +
-                              std::to_string(info.fps));
+    throw Error::in(path, where + ": fps " + number_text(seq.fps) + " differs from the dataset's " +
+                              number_text(info.fps));
   const int frames = seq.frames();
   if (frames <= 0 || seq.kpa.size() != size_t(frames) * mat.cells())
     throw Error::in(path, where + ": has no frames");

@@ -39,14 +39,19 @@ std::string default_config(const std::vector<ClipSource>& clips, const std::vect
 }  // namespace
 
 namespace {
+constexpr std::uint64_t kMaxSequences = 10000000;  // sequences of one dataset
+
 SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
                            const std::string& out_path, const SimulateDatasetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (clips.empty()) throw Error("simulate: no clips to simulate");
   if (bodies.empty()) throw Error("simulate: no bodies to simulate on");
   if (!(options.fps >= 1 && options.fps <= 1000))
-    throw Error("simulate: fps must be in [1, 1000], found " + std::to_string(options.fps));
+    throw Error("simulate: fps must be in [1, 1000], found " + number_text(options.fps));
   check_output_path(out_path, options.force);  // before any work
+  if (options.threads < 0 || options.threads > max_threads())
+    throw Error("simulate: threads must be in 0-" + std::to_string(max_threads()) + ", found " +
+                std::to_string(options.threads));
   const int threads =
       options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<Body> built;
@@ -69,6 +74,26 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
       options.progress("load", ++loaded, nc);
     }
   });
+  // Sizes before allocating: sequence count, then the memory of the metadata
+  // and of one chunk of simulated sequences (plus one per thread at work).
+  const std::uint64_t jobs = checked_mul(std::uint64_t(nc), bodies.size(), out_path, "clips x bodies");
+  if (jobs > std::uint64_t(kMaxSequences))
+    throw Error::in(out_path, std::to_string(nc) + " clips x " + std::to_string(bodies.size()) + " bodies = " +
+                                  std::to_string(jobs) + " sequences, more than the " +
+                                  std::to_string(kMaxSequences) + " a dataset may have");
+  std::uint64_t longest = 0;
+  for (const Motion& m : motions) longest = std::max<std::uint64_t>(longest, std::uint64_t(m.size()));
+  const std::uint64_t chunk_jobs =
+      std::min<std::uint64_t>(jobs, options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads));
+  const std::uint64_t sequence_bytes = checked_mul(
+      longest, checked_mul(std::uint64_t(options.sim.mat.rows) * std::uint64_t(options.sim.mat.cols), sizeof(float),
+                           out_path, "mat cells"),
+      out_path, "a sequence");
+  check_memory(checked_mul(sequence_bytes, chunk_jobs + std::uint64_t(threads), out_path, "simulation") +
+                   checked_mul(jobs, 512, out_path, "sequence list"),
+               out_path, "simulating " + std::to_string(jobs) + " sequences of up to " + std::to_string(longest) +
+                             " frames on a " + std::to_string(options.sim.mat.rows) + " x " +
+                             std::to_string(options.sim.mat.cols) + " mat");
   SimulateDatasetSummary summary;
   summary.clips = nc;
   summary.bodies = int(bodies.size());

@@ -112,6 +112,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
   for (const auto& name : names) check_output_path(path(name), options.force);
 
   std::vector<std::string> written;
+  CommitGroup report;  // every file appears at the end, or none (a failure keeps the previous report)
   write_text_file(path("metrics.csv"), format_metrics_csv(rows), options.force);
   written.push_back(path("metrics.csv"));
 
@@ -167,6 +168,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
     worst.push_back({r, png, ""});
   }
   for (const auto& p : write_report_html(rows, categories, worst, dataset.path(), options)) written.push_back(p);
+  report.commit();
   return written;
 }
 

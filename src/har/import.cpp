@@ -1,5 +1,6 @@
 // Real recordings into the dataset format (ptnet/har.hpp, import_recordings).
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <filesystem>
 #include <map>
@@ -7,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "ptnet/body_spec.hpp"
+#include "ptnet/csv.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
@@ -34,10 +37,10 @@ double number(const std::string& text, const std::string& file, long line, const
   try {
     std::size_t used = 0;
     const double v = std::stod(text, &used);
-    if (used == text.size()) return v;
+    if (used == text.size() && std::isfinite(v)) return v;
   } catch (const std::exception&) {
   }
-  throw Error::at(file, line, what, "'" + text + "'");
+  throw Error::at(file, line, what, escaped(text));
 }
 
 // [T, rows, cols] kPa from a CSV of one frame per line.
@@ -70,20 +73,11 @@ void import_recordings(const std::string& manifest, const std::string& out,
                        const ImportOptions& options, bool force) {
   namespace fs = std::filesystem;
   check_output_path(out, force);
-  std::stringstream in(read_text_file(manifest));
-  std::string text;
-  long line = 0;
-  std::vector<std::string> header;
-  while (header.empty() && std::getline(in, text)) {
-    ++line;
-    if (!trim(text).empty()) header = split(text);
-  }
-  const std::vector<std::string> want = {"subject", "sex", "height_cm", "weight_kg", "file"};
-  if (header.size() < 5 || header.size() > 6 ||
-      !std::equal(want.begin(), want.end(), header.begin()) ||
-      (header.size() == 6 && header[5] != "category"))
-    throw Error::at(manifest, line, "header subject,sex,height_cm,weight_kg,file[,category]",
-                    "'" + trim(text) + "'");
+  const CsvTable t = read_csv(manifest);
+  const std::string columns = "subject,sex,height_cm,weight_kg,file[,category]";
+  const int c_subject = t.required("subject", columns), c_sex = t.required("sex", columns),
+            c_height = t.required("height_cm", columns), c_weight = t.required("weight_kg", columns),
+            c_file = t.required("file", columns), c_category = t.column("category");
   struct Row {
     std::string subject, file, category;
     long line;
@@ -91,26 +85,23 @@ void import_recordings(const std::string& manifest, const std::string& out,
   std::vector<Row> rows;
   std::vector<BodySpec> bodies;
   std::map<std::string, std::size_t> body_of;
-  while (std::getline(in, text)) {
-    ++line;
-    if (trim(text).empty()) continue;
-    const auto f = split(text);
-    if (f.size() != header.size())
-      throw Error::at(manifest, line, std::to_string(header.size()) + " fields", std::to_string(f.size()));
+  for (const CsvRow& row : t.rows) {
+    const long line = row.line;
+    auto f = [&](int c) -> const std::string& { return CsvTable::field(row, c); };
     BodySpec b;
-    b.id = f[0];
+    b.id = f(c_subject);
     if (b.id.empty()) throw Error::at(manifest, line, "a subject id", "an empty field");
-    std::string sex = f[1];
-    for (char& c : sex) c = char(std::tolower((unsigned char)c));
-    if (sex == "female" || sex == "f" || sex == "0") b.sex = Sex::female;
-    else if (sex == "male" || sex == "m" || sex == "1") b.sex = Sex::male;
-    else throw Error::at(manifest, line, "sex female or male", "'" + f[1] + "'");
-    b.height_cm = number(f[2], manifest, line, "height_cm");
-    b.weight_kg = number(f[3], manifest, line, "weight_kg");
+    try {
+      b.sex = parse_sex(f(c_sex));
+    } catch (const Error&) {
+      throw Error::at(manifest, line, "sex female or male", escaped(f(c_sex)));
+    }
+    b.height_cm = number(f(c_height), manifest, line, "height_cm");
+    b.weight_kg = number(f(c_weight), manifest, line, "weight_kg");
     if (b.height_cm < kMinHeightCm || b.height_cm > kMaxHeightCm)
-      throw Error::at(manifest, line, "height_cm in 100-230", f[2]);
+      throw Error::at(manifest, line, "height_cm in 100-230", number_text(b.height_cm));
     if (b.weight_kg < kMinWeightKg || b.weight_kg > kMaxWeightKg)
-      throw Error::at(manifest, line, "weight_kg in 20-250", f[3]);
+      throw Error::at(manifest, line, "weight_kg in 20-250", number_text(b.weight_kg));
     b.role = "original";
     auto it = body_of.find(b.id);
     if (it == body_of.end()) {
@@ -122,7 +113,7 @@ void import_recordings(const std::string& manifest, const std::string& out,
         throw Error::at(manifest, line, "the attributes given before for subject " + b.id,
                         "different ones");
     }
-    rows.push_back({b.id, f[4], f.size() == 6 ? f[5] : "", line});
+    rows.push_back({b.id, f(c_file), f(c_category), line});
   }
   if (rows.empty()) throw Error::in(manifest, "no recordings listed");
 
@@ -140,12 +131,12 @@ void import_recordings(const std::string& manifest, const std::string& out,
     PressureSequence seq;
     if (ext == ".npy") seq = read_npy_sequence(file.string(), options.mat, options.fps);
     else if (ext == ".csv") seq = read_csv_frames(file.string(), options.mat, options.fps);
-    else throw Error::at(manifest, r.line, "a .npy or .csv file", "'" + r.file + "'");
+    else throw Error::at(manifest, r.line, "a .npy or .csv file", escaped(r.file));
     SequenceMeta m;
     m.motion_id = file.stem().string();
     m.body_id = r.subject;
     m.name = m.motion_id + "__" + r.subject;
-    if (names[m.name]++) throw Error::at(manifest, r.line, "a new recording", "'" + m.name + "' again");
+    if (names[m.name]++) throw Error::at(manifest, r.line, "a new recording", escaped(m.name) + " again");
     m.performer = r.subject;
     m.category = r.category;
     m.take = 1;

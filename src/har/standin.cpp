@@ -19,6 +19,7 @@
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
+#include "ptnet/simulate_dataset.hpp"
 
 namespace ptnet::har {
 namespace {
@@ -102,79 +103,6 @@ StandinPlan procedural_plan(const StandinOptions& o) {
 
 }  // namespace
 
-std::vector<MocapClip> read_mocap_clips(const std::string& folder) {
-  namespace fs = std::filesystem;
-  const std::string path = (fs::path(folder) / "clips.csv").string();
-  std::stringstream in(read_text_file(path));
-  auto split = [](const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-      const auto b = item.find_first_not_of(" \t\r"), e = item.find_last_not_of(" \t\r");
-      out.push_back(b == std::string::npos ? "" : item.substr(b, e - b + 1));
-    }
-    if (!line.empty() && line.back() == ',') out.push_back("");
-    return out;
-  };
-  std::string text;
-  long line = 0;
-  std::vector<std::string> header;
-  while (header.empty() && std::getline(in, text)) {
-    ++line;
-    if (text.find_first_not_of(" \t\r") != std::string::npos) header = split(text);
-  }
-  auto column = [&](const std::string& name, bool required) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end() && required)
-      throw Error::at(path, line, "a header with column " + name, "'" + text + "'");
-    return it == header.end() ? -1 : int(it - header.begin());
-  };
-  const int c_file = column("file", true), c_subject = column("subject", true),
-            c_category = column("category", true), c_take = column("take", true),
-            c_mpu = column("metres_per_unit", false), c_up = column("up", false);
-  std::vector<MocapClip> clips;
-  while (std::getline(in, text)) {
-    ++line;
-    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const auto f = split(text);
-    if (f.size() != header.size())
-      throw Error::at(path, line, std::to_string(header.size()) + " fields", std::to_string(f.size()));
-    MocapClip c;
-    c.file = (fs::path(folder) / f[c_file]).string();
-    c.subject = f[c_subject];
-    if (c.subject.empty()) throw Error::at(path, line, "a subject", "an empty field");
-    try {
-      c.category = category_name(parse_category(f[c_category]));
-    } catch (const Error&) {
-      throw Error::at(path, line, "category walking, rom, freestyle or acting", "'" + f[c_category] + "'");
-    }
-    auto number = [&](int col, const char* what) {
-      try {
-        std::size_t used = 0;
-        const double v = std::stod(f[col], &used);
-        if (used == f[col].size()) return v;
-      } catch (const std::exception&) {
-      }
-      throw Error::at(path, line, what, "'" + f[col] + "'");
-    };
-    const double take = number(c_take, "a take number >= 1");
-    if (!(take >= 1) || take != std::floor(take)) throw Error::at(path, line, "a take number >= 1", "'" + f[c_take] + "'");
-    c.take = int(take);
-    if (c_mpu >= 0 && !f[c_mpu].empty()) {
-      c.metres_per_unit = number(c_mpu, "metres per unit > 0");
-      if (!(c.metres_per_unit > 0)) throw Error::at(path, line, "metres per unit > 0", "'" + f[c_mpu] + "'");
-    }
-    if (c_up >= 0 && !f[c_up].empty()) {
-      if (f[c_up] != "y" && f[c_up] != "z") throw Error::at(path, line, "up axis y or z", "'" + f[c_up] + "'");
-      c.up = f[c_up];
-    }
-    clips.push_back(c);
-  }
-  if (clips.empty()) throw Error::in(path, "no clips listed");
-  return clips;
-}
-
 namespace {
 
 // Numeric subject ids sort numerically ("2" < "14" < "141"), others after.
@@ -189,7 +117,7 @@ bool subject_less(const std::string& a, const std::string& b) {
 // One subject per CMU subject of the folder's clips.csv, its clips
 // retargeted onto its own sampled body.
 StandinPlan mocap_plan(const StandinOptions& o) {
-  const std::vector<MocapClip> clips = read_mocap_clips(o.mocap);
+  const std::vector<ClipRow> clips = read_clips_csv((std::filesystem::path(o.mocap) / "clips.csv").string());
   std::vector<std::string> subjects;
   for (const auto& c : clips)
     if (std::find(subjects.begin(), subjects.end(), c.subject) == subjects.end()) subjects.push_back(c.subject);

@@ -10,6 +10,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/zip_check.hpp"
 
 namespace ptnet {
 namespace nn = torch::nn;
@@ -254,6 +255,7 @@ void save_weights(const PressureTransferNet& net, const std::string& path) {
 void load_weights(PressureTransferNet& net, const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error::in(path, "no such file (model weights)");
+  verify_zip_file(path);
   torch::serialize::InputArchive archive;
   try {
     archive.load_from(path, torch::kCPU);

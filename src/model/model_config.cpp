@@ -2,9 +2,11 @@
 // directory's config.json. No Torch here.
 #include "ptnet/model_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <type_traits>
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
@@ -111,6 +113,16 @@ std::int64_t parameter_count(const ModelConfig& c) {
   return n;
 }
 
+std::uint64_t model_memory_bytes(const ModelConfig& c, int batch, bool training) {
+  // Every factor is bounded by validate(): the products fit in 64 bits.
+  const double params = double(parameter_count(c)) * 4 * (training ? 4 : 1);
+  auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2);
+  const double per_window = 4.0 * (3.0 * c.window * s0[0] * s0[1] + 4.0 * c.channels[0] * s0[0] * s0[1] +
+                                   4.0 * c.channels[1] * s1[0] * s1[1] + 4.0 * c.channels[2] * s2[0] * s2[1]);
+  const double total = params + per_window * std::max(1, batch) * (training ? 2 : 1);
+  return total > 1.8e19 ? std::uint64_t(1.8e19) : std::uint64_t(total);
+}
+
 double forward_flops(const ModelConfig& c) {
   if (c.arch == Arch::frame) return 2 * frame_counts(c).macs_per_frame * c.window;
   const double t = c.window, c1 = c.channels[0], c2 = c.channels[1], c3 = c.channels[2];
@@ -146,13 +158,37 @@ const json& field(const json& j, const char* key, const std::string& where) {
   return j.at(key);
 }
 
+[[noreturn]] void wrong(const char* key, const json& v, const char* expected, const std::string& where) {
+  throw Error::in(where, std::string("field \"") + key + "\": expected " + expected + ", found " +
+                             escaped(v.dump(), 40));
+}
+
 template <typename T>
 T get(const json& j, const char* key, const std::string& where) {
   const json& v = field(j, key, where);
-  try {
-    return v.get<T>();
-  } catch (const json::exception&) {
-    throw Error::in(where, std::string("field \"") + key + "\" has the wrong type: " + v.dump());
+  if constexpr (std::is_same_v<T, int>) {
+    // Integers only, in int range: 1e10 or 2.5 are not silently truncated.
+    if (v.is_number_unsigned()) {
+      if (v.get<std::uint64_t>() <= 0x7fffffffu) return int(v.get<std::uint64_t>());
+    } else if (v.is_number_integer()) {
+      const std::int64_t i = v.get<std::int64_t>();
+      if (i >= -0x7fffffffLL && i <= 0x7fffffffLL) return int(i);
+    }
+    wrong(key, v, "an integer", where);
+  } else if constexpr (std::is_same_v<T, double>) {
+    if (!v.is_number() || !std::isfinite(v.get<double>())) wrong(key, v, "a finite number", where);
+    return v.get<double>();
+  } else if constexpr (std::is_same_v<T, std::array<int, 3>>) {
+    if (!v.is_array() || v.size() != 3) wrong(key, v, "three integers", where);
+    std::array<int, 3> out{};
+    for (std::size_t i = 0; i < 3; ++i) out[i] = get<int>(json{{key, v[i]}}, key, where);
+    return out;
+  } else {
+    try {
+      return v.get<T>();
+    } catch (const json::exception&) {
+      wrong(key, v, "a string", where);
+    }
   }
 }
 
@@ -164,12 +200,12 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   try {
     c.arch = parse_arch(arch);
   } catch (const Error&) {
-    throw Error::in(where, "unknown architecture \"" + arch + "\"");
+    throw Error::in(where, "unknown architecture " + escaped(arch));
   }
   if (j.contains("align")) {
     const std::string align = get<std::string>(j, "align", where);
     if (align == "zoom") c.align = Align::zoom;
-    else if (align != "none") throw Error::in(where, "unknown input alignment \"" + align + "\"");
+    else if (align != "none") throw Error::in(where, "unknown input alignment " + escaped(align));
   }
   c.window = get<int>(j, "window", where);
   c.rows = get<int>(j, "rows", where);
@@ -203,7 +239,8 @@ json to_json(const ModelDir& d) {
                 {"sex", "female 0, male 1"}}},
               {"data", d.data.is_null() ? json::object() : d.data},
               {"options", d.options.is_null() ? json::object() : d.options},
-              {"metrics", d.metrics.is_null() ? json::object() : d.metrics}};
+              {"metrics", d.metrics.is_null() ? json::object() : d.metrics},
+              {"integrity", d.integrity.is_null() ? json::object() : d.integrity}};
 }
 
 ModelDir read_model_dir(const std::string& dir) {
@@ -213,15 +250,25 @@ ModelDir read_model_dir(const std::string& dir) {
   if (!fs::is_directory(dir, ec)) throw Error::in(dir, "is not a folder (expected a model folder with config.json)");
   const std::string path = (fs::path(dir) / "config.json").string();
   if (!fs::exists(path, ec)) throw Error::in(path, "no such file (is " + dir + " a ptnet model folder?)");
+  return parse_model_config(read_text_file(path, kMaxConfigBytes), path, dir);
+}
+
+ModelDir parse_model_config(const std::string& text, const std::string& path, const std::string& dir) {
   json j;
   try {
-    j = json::parse(read_text_file(path));
-  } catch (const json::parse_error& e) {
-    throw Error::in(path, std::string("not valid JSON (") + e.what() + ")");
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'" -> the part after "] "
+    std::string why = e.what();
+    const auto cut = why.find("] ");
+    if (cut != std::string::npos) why = why.substr(cut + 2);
+    if (why.size() > 120) why = why.substr(0, 120) + "...";
+    throw Error::in(path, "not valid JSON (" + why + ")");
   }
+  if (!j.is_object()) throw Error::in(path, "not a ptnet model config (expected a JSON object)");
   if (get<std::string>(j, "format", path) != kModelFormat)
-    throw Error::in(path, std::string("expected format \"") + kModelFormat + "\", found \"" +
-                              j.at("format").get<std::string>() + "\"");
+    throw Error::in(path, std::string("expected format \"") + kModelFormat + "\", found " +
+                              escaped(j.at("format").get<std::string>()));
   int version = get<int>(j, "version", path);
   if (version != kModelVersion)
     throw Error::in(path, "expected version " + std::to_string(kModelVersion) + ", found " +
@@ -235,7 +282,12 @@ ModelDir read_model_dir(const std::string& dir) {
   d.mat.pitch_m = get<double>(mat, "pitch_m", path);
   if (d.mat.rows != d.model.rows || d.mat.cols != d.model.cols)
     throw Error::in(path, "mat size and architecture disagree");
+  if (j.contains("window") && get<int>(j, "window", path) != d.model.window)
+    throw Error::in(path, "window " + std::to_string(get<int>(j, "window", path)) + " disagrees with the architecture's " +
+                              std::to_string(d.model.window));
+  if (!(d.mat.pitch_m > 0 && d.mat.pitch_m <= 10)) throw Error::in(path, "mat pitch_m must be in (0, 10] m");
   d.fps = get<double>(j, "fps", path);
+  if (!(d.fps >= 1 && d.fps <= 1000)) throw Error::in(path, "fps " + number_text(d.fps) + " is not in [1, 1000]");
   const json& n = field(j, "normalisation", path);
   d.norm.pressure_scale_kpa = get<double>(n, "pressure_scale_kpa", path);
   d.norm.height_mean_cm = get<double>(n, "height_mean_cm", path);
@@ -250,7 +302,28 @@ ModelDir read_model_dir(const std::string& dir) {
   if (j.contains("data")) d.data = j["data"];
   if (j.contains("options")) d.options = j["options"];
   if (j.contains("metrics")) d.metrics = j["metrics"];
+  if (j.contains("integrity")) {
+    d.integrity = j["integrity"];
+    if (!d.integrity.is_object()) throw Error::in(path, "field \"integrity\" must be an object");
+  }
   return d;
+}
+
+std::string recorded_digest(const ModelDir& dir, const std::string& file, int* epoch) {
+  if (epoch) *epoch = -1;
+  if (!dir.integrity.is_object() || !dir.integrity.contains(file)) return "";
+  const json& v = dir.integrity.at(file);
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_object() && v.contains("digest") && v["digest"].is_string()) {
+    if (epoch && v.contains("epoch") && v["epoch"].is_number_integer()) *epoch = v["epoch"].get<int>();
+    return v["digest"].get<std::string>();
+  }
+  return "";
+}
+
+void record_digest(ModelDir& dir, const std::string& file, const std::string& digest, int epoch) {
+  if (!dir.integrity.is_object()) dir.integrity = json::object();
+  dir.integrity[file] = epoch >= 0 ? json{{"epoch", epoch}, {"digest", digest}} : json(digest);
 }
 
 void check_body_range(const BodySpec& b, const std::string& what) {

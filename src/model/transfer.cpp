@@ -4,9 +4,12 @@
 #include "ptnet/transfer.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/parallel.hpp"
 #include "ptnet/model.hpp"
 
 namespace ptnet {
@@ -22,12 +25,23 @@ Transfer::Transfer(const std::string& model_dir, const TransferOptions& options)
     : impl_(std::make_unique<Impl>()) {
   if (options.stride < 1) throw Error("transfer: stride must be >= 1, found " + std::to_string(options.stride));
   if (options.batch < 1) throw Error("transfer: batch must be >= 1, found " + std::to_string(options.batch));
+  if (options.threads < 0 || options.threads > max_threads())
+    throw Error("transfer: threads must be in 0-" + std::to_string(max_threads()) + ", found " +
+                std::to_string(options.threads));
   impl_->options = options;
+  namespace fs = std::filesystem;
+  const std::string config_path = (fs::path(model_dir) / "config.json").string();
+  const std::string weights_path = (fs::path(model_dir) / "model.pt").string();
+  note_input(config_path);  // no output of this run may replace the model
+  note_input(weights_path);
   impl_->dir = read_model_dir(model_dir);
   impl_->device = parse_device(options.device);
   if (options.threads > 0) torch::set_num_threads(options.threads);
+  check_memory(model_memory_bytes(impl_->dir.model, options.batch, /*training=*/false), config_path,
+               "the model (" + std::to_string(parameter_count(impl_->dir.model)) + " parameters)");
   impl_->net = PressureTransferNet(impl_->dir.model);
-  load_weights(impl_->net, (std::filesystem::path(model_dir) / "model.pt").string());
+  load_weights(impl_->net, weights_path);
+  check_weights_digest(*impl_->net, recorded_digest(impl_->dir, "model.pt"), weights_path, config_path);
   impl_->net->to(impl_->device);
   impl_->net->eval();
 }
@@ -46,6 +60,10 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
     throw Error::in(d.path, "model is built for a " + std::to_string(h) + " x " + std::to_string(w) +
                                 " mat, the sequence has " + std::to_string(src.mat.rows) + " x " +
                                 std::to_string(src.mat.cols));
+  if (std::abs(src.fps - d.fps) > 1e-6 * d.fps)
+    throw Error::in(d.path, "model is trained at " + number_text(d.fps) + " fps, the sequence is at " +
+                                number_text(src.fps) + " fps (resample the data: ptnet simulate --fps " +
+                                number_text(d.fps) + ")");
   const int t = src.frames();
   if (t < k)
     throw Error("transfer: sequence has " + std::to_string(t) + " frames, the model's window needs at least " +

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <unordered_set>
 #include <vector>
 
 #include "ptnet/error.hpp"
@@ -22,11 +23,19 @@ constexpr int kMaxDepth = 512;  // nested joints; deeper is surely not a skeleto
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-// A token for messages: quoted-free, cut to a readable length.
+// A token for messages: unquoted, control bytes escaped, cut to a readable
+// length.
 std::string shown(std::string_view token) {
   if (token.empty()) return "end of file";
-  if (token.size() > 40) return std::string(token.substr(0, 40)) + "...";
-  return std::string(token);
+  return escaped(token, 40, /*quotes=*/false);
+}
+
+// The first token of a file that is not a BVH file is not echoed: the file
+// may be anything (a clips CSV row can name any file).
+bool is_bvh_keyword(std::string_view t) {
+  for (std::string_view k : {"ROOT", "JOINT", "MOTION", "OFFSET", "CHANNELS", "End", "Site", "{", "}", "Frames:"})
+    if (t == k) return true;
+  return false;
 }
 
 struct Token {
@@ -144,7 +153,7 @@ class HierarchyParser {
       while (!name.empty() && is_space(name.back())) name.remove_suffix(1);
     }
     if (name.empty()) lex_.fail(keyword_line, "a joint name", brace ? "{" : "end of line");
-    if (bvh_.find(name) >= 0)
+    if (!names_.insert(std::string(name)).second)
       lex_.fail(keyword_line, "a joint name not used before", std::string(name) + " again");
 
     const int index = int(bvh_.joints.size());
@@ -220,6 +229,7 @@ class HierarchyParser {
 
   Lexer& lex_;
   Bvh& bvh_;
+  std::unordered_set<std::string> names_;  // joint names so far: linear, not quadratic, in the joint count
 };
 
 // Parses one frame value at p (no leading blanks); returns the end of the token.
@@ -249,7 +259,11 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
   Lexer lex(text, source);
 
   Token t = lex.next();
-  if (t.text != "HIERARCHY") lex.fail(t.line, "HIERARCHY", t.text);
+  if (t.text != "HIERARCHY") {
+    if (!t.text.empty() && !is_bvh_keyword(t.text))
+      throw Error::at(source, t.line, "HIERARCHY", "other text (not a BVH file)");
+    lex.fail(t.line, "HIERARCHY", t.text);
+  }
   t = lex.next();
   if (t.text != "ROOT") lex.fail(t.line, "ROOT", t.text);
   HierarchyParser(lex, bvh).joint(-1, t.line, 0);
@@ -331,6 +345,7 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
 }
 
 Bvh read_bvh(const std::string& path) {
+  note_input(path);
   std::string text = read_text_file(path);
   if (text.empty()) throw Error::at(path, 1, "HIERARCHY", "an empty file");
   return parse_bvh(text, path);

@@ -86,16 +86,16 @@ double FootTrack::swing_activity(double t, double ramp) const {
 
 Motion generate_motion(const GenerateOptions& options) {
   if (!(options.seconds > 0) || options.seconds > 3600)
-    throw Error("generate_motion: expected seconds in (0, 3600], found " + std::to_string(options.seconds));
+    throw Error("generate_motion: expected seconds in (0, 3600], found " + number_text(options.seconds));
   if (!(options.fps >= 1) || options.fps > 1000)
-    throw Error("generate_motion: expected fps in [1, 1000], found " + std::to_string(options.fps));
+    throw Error("generate_motion: expected fps in [1, 1000], found " + number_text(options.fps));
   if (options.performer < 1 || options.take < 1)
     throw Error("generate_motion: expected performer and take >= 1, found " +
                 std::to_string(options.performer) + " and " + std::to_string(options.take));
   const double height_cm =
       options.height_cm > 0 ? options.height_cm : performer_height_cm(options.performer, options.seed);
   if (height_cm < 50 || height_cm > 250)
-    throw Error("generate_motion: expected a height in [50, 250] cm, found " + std::to_string(height_cm));
+    throw Error("generate_motion: expected a height in [50, 250] cm, found " + number_text(height_cm));
   const double h = height_cm / 100;
   const gen::Style style = gen::performer_style(options.performer, options.seed, h);
   rig::Rng take_rng(options.seed, 0x54616b65ULL + std::uint64_t(options.category),

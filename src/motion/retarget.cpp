@@ -40,7 +40,7 @@ double leg_length(const Pose& p) {
 double retarget_scale(const Motion& motion, double height_cm) {
   if (motion.frames.empty()) throw Error(motion.name + ": cannot retarget a motion with no frames");
   if (!(height_cm >= 50 && height_cm <= 250))
-    throw Error(motion.name + ": expected a target height in [50, 250] cm, found " + std::to_string(height_cm));
+    throw Error(motion.name + ": expected a target height in [50, 250] cm, found " + number_text(height_cm));
   const Pose o = canonical_rest_offsets(height_cm);
   double source_leg = 0;
   for (const Pose& p : motion.frames) source_leg += leg_length(p);

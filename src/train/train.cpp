@@ -6,6 +6,7 @@
 // A = 3 attributes.
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <iterator>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,8 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model.hpp"
+#include "ptnet/parallel.hpp"
+#include "ptnet/zip_check.hpp"
 #include "ptnet/train.hpp"
 
 namespace ptnet {
@@ -100,6 +103,8 @@ void check_options(const TrainOptions& o) {
   at_least("patience", o.patience, 1);
   at_least("stride", o.stride, 1);
   at_least("threads", o.threads, 0);
+  if (o.threads > max_threads())
+    throw Error("--threads: must be <= " + std::to_string(max_threads()) + ", found " + std::to_string(o.threads));
   at_least("lr-halve-every", o.lr_halve_every, 1);
   at_least("samples-per-epoch", double(o.samples_per_epoch), 0);
   at_least("val-samples", double(o.val_samples), 0);
@@ -356,6 +361,7 @@ void save_checkpoint(const std::string& path, const PressureTransferNet& net, to
 
 State load_checkpoint(const std::string& path, PressureTransferNet& net, torch::optim::Adam& opt) {
   if (!fs::exists(path)) throw Error::in(path, "no checkpoint to resume from");
+  verify_zip_file(path);
   torch::serialize::InputArchive archive, model, optim;
   State s;
   try {
@@ -405,6 +411,27 @@ void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
   }
 }
 
+// Removes what a fresh run wrote when it fails while setting up (before the
+// first epoch starts: bad --init weights, memory, data): config.json,
+// checkpoint.pt, history.csv and the folder if it is then empty. Failures in
+// the epochs keep the last checkpoint and say so; a resumed run is left as is.
+class LeftoverGuard {
+ public:
+  LeftoverGuard(std::string dir, bool resume) : dir_(std::move(dir)), active_(!resume) {}
+  ~LeftoverGuard() {
+    if (!active_ || std::uncaught_exceptions() == 0) return;
+    std::error_code ec;
+    if (fs::exists(fs::path(dir_) / "model.pt", ec)) return;
+    for (const char* f : {"config.json", "checkpoint.pt", "history.csv"}) fs::remove(fs::path(dir_) / f, ec);
+    if (fs::is_empty(dir_, ec)) fs::remove(dir_, ec);
+  }
+  void done() { active_ = false; }
+
+ private:
+  std::string dir_;
+  bool active_;
+};
+
 }  // namespace
 
 TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& o) {
@@ -434,15 +461,21 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       throw Error::in(config_path, "was trained on other data (digest " + previous.data.value("digest", "?") +
                                        ", " + source.path() + " has " + digest + "); cannot resume");
     md.model = previous.model;
+    md.integrity = previous.integrity;
   } else if (!o.init.empty()) {
     previous = read_model_dir(o.init);
     md.model = previous.model;  // fine-tuning keeps the architecture
   }
+  if ((o.resume || !o.init.empty()) && std::abs(previous.fps - source.fps()) > 1e-6 * previous.fps)
+    throw Error::in(source.path(), "is at " + number_text(source.fps()) + " fps, the model at " +
+                                       number_text(previous.fps) + " fps");
   if (md.model.rows != mat.rows || md.model.cols != mat.cols)
     throw Error::in(source.path(), "mat is " + std::to_string(mat.rows) + " x " + std::to_string(mat.cols) +
                                        ", the model was built for " + std::to_string(md.model.rows) + " x " +
                                        std::to_string(md.model.cols));
   validate(md.model);
+  check_memory(model_memory_bytes(md.model, o.micro_batch, /*training=*/true), out_dir,
+               "the model (" + std::to_string(parameter_count(md.model)) + " parameters) in training");
 
   WindowOptions wo;
   wo.window = md.model.window;
@@ -460,18 +493,32 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
                  {"protocol", "role=retargeted, take=1; 9:1 per-motion time blocks"}};
   md.options = options_json(o);
   prepare_out_dir(out_dir, o);
+  // A fresh run that fails while setting up leaves nothing behind.
+  LeftoverGuard leftovers(out_dir, o.resume);
 
   torch::manual_seed(o.seed);
   PressureTransferNet net(md.model);
-  if (!o.init.empty() && !o.resume) load_weights(net, (fs::path(o.init) / "model.pt").string());
+  if (!o.init.empty() && !o.resume) {
+    const std::string init_weights = (fs::path(o.init) / "model.pt").string();
+    load_weights(net, init_weights);
+    check_weights_digest(*net, recorded_digest(previous, "model.pt"), init_weights,
+                         (fs::path(o.init) / "config.json").string());
+  }
   net->to(device);
   torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(o.lr));
 
   State s;
-  if (o.resume) s = load_checkpoint(ckpt_path, net, optimizer);
-  else {
-    write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+  if (o.resume) {
+    s = load_checkpoint(ckpt_path, net, optimizer);
+    int recorded_epoch = -1;
+    const std::string recorded = recorded_digest(previous, "checkpoint.pt", &recorded_epoch);
+    // A kill between the checkpoint's rename and config.json's leaves the
+    // config one epoch behind: that checkpoint passed its CRCs and is taken.
+    if (recorded_epoch != s.epoch - 1) check_weights_digest(*net, recorded, ckpt_path, config_path);
+  } else {
     save_checkpoint(ckpt_path, net, optimizer, s);  // epoch 0: the initial weights
+    record_digest(md, "checkpoint.pt", weights_digest(*net), 0);
+    write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
   }
 
   auto log = [&](const std::string& line) {
@@ -486,6 +533,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       (o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
 
   Batcher batcher(source, index, md.norm, o.cache_mb, device, md.model.align);
+  leftovers.done();  // from here a failure names what it keeps (the checkpoint)
   TrainResult result;
   const bool finished_before = s.epoch >= o.epochs || s.bad_epochs >= o.patience;
   for (int e = s.epoch; e < o.epochs && s.bad_epochs < o.patience && !finished_before; ++e) {
@@ -541,12 +589,16 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
       s.best_epoch = e + 1;
       s.bad_epochs = 0;
       save_weights(net, best_path);
+      record_digest(md, "model.pt", weights_digest(*net));
+      write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
     } else {
       ++s.bad_epochs;
     }
     s.history += std::to_string(e + 1) + "," + fmt("%.6g", train_loss) + "," + fmt("%.6g", v.mse) + "," +
                  fmt("%.6g", lr) + "," + fmt("%.3f", secs) + "\n";
     save_checkpoint(ckpt_path, net, optimizer, s);
+    record_digest(md, "checkpoint.pt", weights_digest(*net), s.epoch);
+    write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
     write_text_file((dir / "history.csv").string(), s.history, /*force=*/true);
     char line[160];
     std::snprintf(line, sizeof line, "[epoch %d/%d] train %.6f val %.6f lr %.1e %.1f s", e + 1, o.epochs,
@@ -556,6 +608,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
 
   // Final metrics with the best weights on the validation windows.
   load_weights(net, best_path);
+  check_weights_digest(*net, recorded_digest(md, "model.pt"), best_path, config_path);
   net->to(device);
   const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true);
   // The output activation threshold that best matches the truth's contact

@@ -1,0 +1,151 @@
+// RFC 4180 CSV reader (ptnet/csv.hpp): a character state machine, linear in
+// the text size.
+#include "ptnet/csv.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+
+namespace ptnet {
+namespace {
+
+std::string trim(std::string_view s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
+  return std::string(s.substr(b, e - b));
+}
+
+// What follows position `at` on its line, for a message.
+std::string rest_of_line(std::string_view text, std::size_t at) {
+  const std::size_t end = text.find_first_of("\r\n", at);
+  return escaped(text.substr(at, std::min<std::size_t>(end == std::string_view::npos ? text.size() - at : end - at, 20)));
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+int CsvTable::column(std::string_view name) const {
+  for (std::size_t i = 0; i < header.size(); ++i)
+    if (header[i] == name) return int(i);
+  return -1;
+}
+
+int CsvTable::required(std::string_view name, const std::string& columns) const {
+  const int i = column(name);
+  if (i >= 0) return i;
+  std::string found;
+  for (std::size_t k = 0; k < header.size(); ++k) found += (k ? "," : "") + header[k];
+  throw Error::at(source, header_line, "a header with column " + std::string(name) + " (" + columns + ")",
+                  escaped(found, 60));
+}
+
+const std::string& CsvTable::field(const CsvRow& row, int index) {
+  static const std::string empty;
+  return index < 0 ? empty : row.fields[std::size_t(index)];
+}
+
+CsvTable parse_csv(std::string_view text, const std::string& source) {
+  CsvTable t;
+  t.source = source;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  std::size_t i = 0;
+  long line = 1;
+  const std::size_t n = text.size();
+  while (i < n) {
+    // Start of a record: skip blank and comment lines.
+    const long first_line = line;
+    std::size_t probe = i;
+    while (probe < n && (text[probe] == ' ' || text[probe] == '\t' || text[probe] == '\r')) ++probe;
+    if (probe == n) break;
+    if (text[probe] == '\n' || text[probe] == '#') {
+      while (probe < n && text[probe] != '\n') ++probe;
+      i = probe + 1;
+      ++line;
+      continue;
+    }
+    CsvRow row;
+    row.line = first_line;
+    for (;;) {  // one field per iteration
+      std::string field;
+      while (i < n && (text[i] == ' ' || text[i] == '\t')) ++i;
+      if (i < n && text[i] == '"') {
+        const long open_line = line;
+        ++i;
+        for (;;) {
+          if (i >= n) throw Error::at(source, open_line, "a closing quote", "end of file");
+          const char c = text[i++];
+          if (c == '"') {
+            if (i < n && text[i] == '"') {
+              field += '"';
+              ++i;
+            } else {
+              break;
+            }
+          } else {
+            if (c == '\n') ++line;
+            field += c;
+          }
+        }
+        while (i < n && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
+        if (i < n && text[i] != ',' && text[i] != '\n')
+          throw Error::at(source, line, "a comma or line end after a closing quote", rest_of_line(text, i));
+      } else {
+        const std::size_t b = i;
+        while (i < n && text[i] != ',' && text[i] != '\n') {
+          if (text[i] == '"')
+            throw Error::at(source, line, "a quote only at the start of a field", rest_of_line(text, b));
+          ++i;
+        }
+        std::string_view raw = text.substr(b, i - b);
+        if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
+        field = trim(raw);
+      }
+      row.fields.push_back(std::move(field));
+      if (i < n && text[i] == ',') {
+        ++i;
+        continue;
+      }
+      if (i < n) ++i;  // '\n'
+      ++line;
+      break;
+    }
+    if (t.header.empty() && t.header_line == 0) {
+      for (auto& f : row.fields) t.header.push_back(lower(f));
+      t.header_line = row.line;
+      continue;
+    }
+    if (row.fields.size() != t.header.size())
+      throw Error::at(source, row.line, std::to_string(t.header.size()) + " fields (as the header)",
+                      std::to_string(row.fields.size()));
+    t.rows.push_back(std::move(row));
+  }
+  if (t.header_line == 0) throw Error::in(source, "empty CSV file, expected a header line");
+  return t;
+}
+
+std::string csv_field(const std::string& value) {
+  const bool plain = value.find_first_of(",\"\r\n") == std::string::npos &&
+                     (value.empty() || (value.front() != ' ' && value.front() != '\t' && value.back() != ' ' &&
+                                        value.back() != '\t' && value.front() != '#'));
+  if (plain) return value;
+  std::string out = "\"";
+  for (char c : value) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+CsvTable read_csv(const std::string& path) {
+  note_input(path);
+  return parse_csv(read_text_file(path), path);
+}
+
+}  // namespace ptnet
