@@ -57,7 +57,12 @@ void run(const TrainCli& c) {
   if (c.samples_per_epoch >= 0) o.samples_per_epoch = c.samples_per_epoch;
   if (c.val_samples >= 0) o.val_samples = c.val_samples;
   if (c.cache_mb > 0) o.cache_mb = c.cache_mb;
-  if (!c.arch.empty()) o.model.arch = parse_arch(c.arch);
+  if (!c.arch.empty()) {
+    o.model.arch = parse_arch(c.arch);
+    // The window networks see `window` frames as channels: the paper's 30,
+    // not the frame network's 1 of the fast preset (unless --window says so).
+    if (o.model.arch != Arch::frame) o.model.window = kWindow;
+  }
   if (!c.align.empty()) o.model.align = parse_align(c.align);
   if (!c.channels.empty()) o.model.channels = parse_channels(c.channels);
   if (c.hidden) o.model.hidden = c.hidden;

@@ -15,17 +15,7 @@
 
 using namespace ptnet;
 using ptnet::testing_util::TempDir;
-
-namespace {
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-}  // namespace
+using ptnet::testing_util::error_of;
 
 TEST(Csv, Rfc4180QuotingAndLineEnds) {
   const CsvTable t = parse_csv(

@@ -19,18 +19,10 @@
 
 using namespace ptnet;
 using ptnet::testing_util::TempDir;
+using ptnet::testing_util::error_of;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 std::string slurp(const std::string& p) {
   std::ifstream in(p, std::ios::binary);

@@ -54,6 +54,13 @@ inline std::string escaped(std::string_view text, std::size_t max = 40, bool quo
   return quotes ? out + "'" : out;
 }
 
+// A number with `digits` decimals ("1.290"): tables and reports.
+inline std::string fixed_text(double v, int digits = 3) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
 // A number for a message: at most 6 significant digits ("1e+308", "nan").
 inline std::string number_text(double v) {
   char buf[32];

@@ -187,7 +187,8 @@ struct TrainOptions {
   double force_weight = 0.1;        // weight of the total-force term (Loss::mse_force)
   double cache_mb = 1024;           // whole-sequence cache budget
   int crop_rows = 0;                // Arch::frame: train on this many mat rows around the window's
-                                    // pressure (0 = the whole mat); validation uses the whole mat
+                                    // pressure (0 = the whole mat); validation uses the whole mat.
+                                    // The window networks (fully connected layers) ignore it.
   bool fit_contact_threshold = true;  // after training, fit the output activation threshold
   bool resume = false;              // continue from OUT/checkpoint.pt
   std::string init;                 // start from this model folder's weights

@@ -22,12 +22,6 @@ namespace ptnet {
 namespace fs = std::filesystem;
 namespace {
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 const char* split_name(bool seen) { return seen ? "seen" : "unseen"; }
 
 // What each known method is; others are shown by their name.
@@ -122,22 +116,22 @@ std::string table2_html(const Summary& s) {
         << cell(s.methods.front(), group, seen, "rows", std::to_string(first ? first->rows : 0));
       for (const auto& m : s.methods) {
         const GroupSummary* g = s.find(m, group, seen);
-        o << cell(m, group, seen, "rmse_kpa", g ? fixed(g->mean.rmse_kpa, 2) : "&ndash;")
-          << cell(m, group, seen, "binary_r2", g ? fixed(g->mean.binary_r2, 3) : "&ndash;");
+        o << cell(m, group, seen, "rmse_kpa", g ? fixed_text(g->mean.rmse_kpa, 2) : "&ndash;")
+          << cell(m, group, seen, "binary_r2", g ? fixed_text(g->mean.binary_r2, 3) : "&ndash;");
       }
       const nlohmann::json* p = paper_value(paper, seen, group);
-      o << cell("paper", group, seen, "rmse_kpa", p ? fixed((*p)[0].get<double>(), 2) : "&ndash;",
+      o << cell("paper", group, seen, "rmse_kpa", p ? fixed_text((*p)[0].get<double>(), 2) : "&ndash;",
                 "num paper")
-        << cell("paper", group, seen, "binary_r2", p ? fixed((*p)[1].get<double>(), 2) : "&ndash;",
+        << cell("paper", group, seen, "binary_r2", p ? fixed_text((*p)[1].get<double>(), 2) : "&ndash;",
                 "num paper");
       if (has_model) {
         const GroupSummary* g = s.find("model", group, seen);
         o << cell("model", group, seen, "cop_error_cm",
-                  g ? fixed(g->mean.cop_error_cm, 2) : "&ndash;")
+                  g ? fixed_text(g->mean.cop_error_cm, 2) : "&ndash;")
           << cell("model", group, seen, "force_error_pct",
-                  g ? fixed(g->mean.force_error_pct, 1) : "&ndash;")
+                  g ? fixed_text(g->mean.force_error_pct, 1) : "&ndash;")
           << cell("model", group, seen, "contact_iou",
-                  g ? fixed(g->mean.contact_iou, 3) : "&ndash;");
+                  g ? fixed_text(g->mean.contact_iou, 3) : "&ndash;");
       }
       o << "</tr>\n";
     }
@@ -193,8 +187,8 @@ std::vector<std::pair<std::string, std::string>> bar_charts(const Summary& s) {
 std::string pair_caption(const EvalRow& r) {
   return r.category + " (" + split_name(r.take == 1) + "), motion " + r.motion_id + ": " +
          r.source_body + " \xe2\x86\x92 " + r.target_body + ", " + std::to_string(r.frames) +
-         " frames; model RMSE " + fixed(r.metrics.rmse_kpa, 2) + " kPa, binary R\xc2\xb2 " +
-         fixed(r.metrics.binary_r2, 3);
+         " frames; model RMSE " + fixed_text(r.metrics.rmse_kpa, 2) + " kPa, binary R\xc2\xb2 " +
+         fixed_text(r.metrics.binary_r2, 3);
 }
 
 std::string figure_html(const PairFigure& f) {
@@ -230,8 +224,8 @@ std::string worst_html(const std::vector<EvalRow>& rows, const std::vector<PairF
       << split_name(r.take == 1) << "</td><td>" << html_escape(r.motion_id) << "</td><td>"
       << html_escape(r.source_body) << " &rarr; " << html_escape(r.target_body)
       << "</td><td class=\"num\">" << r.frames << "</td><td class=\"num\">"
-      << fixed(r.metrics.rmse_kpa, 2) << "</td><td class=\"num\">" << fixed(r.metrics.binary_r2, 3)
-      << "</td><td class=\"num\">" << (std::isnan(copy) ? "&ndash;" : fixed(copy, 2))
+      << fixed_text(r.metrics.rmse_kpa, 2) << "</td><td class=\"num\">" << fixed_text(r.metrics.binary_r2, 3)
+      << "</td><td class=\"num\">" << (std::isnan(copy) ? "&ndash;" : fixed_text(copy, 2))
       << "</td></tr>\n";
   }
   o << "</table>\n";
@@ -317,7 +311,7 @@ std::vector<std::string> write_report_html(const std::vector<EvalRow>& rows,
     b << ", model <code>" << html_escape(options.model_dir) << "</code>";
   b << "; " << pairs
     << " test pairs (ordered pairs of two original bodies on the same motion); binary R&sup2; and "
-    << "IoU threshold " << fixed(options.threshold_kpa, 2)
+    << "IoU threshold " << fixed_text(options.threshold_kpa, 2)
     << " kPa. Every number: <a href=\"metrics.csv\">metrics.csv</a>"
     << " (one row per pair and method), <a href=\"metrics.json\">metrics.json</a> (group "
        "means).</p>\n";

@@ -44,12 +44,6 @@ std::vector<std::string> ordered(std::vector<std::string> found,
   return found;
 }
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 }  // namespace
 
 std::vector<GroupSummary> summarise(const std::vector<EvalRow>& rows) {
@@ -123,14 +117,14 @@ std::string format_table(const std::vector<EvalRow>& rows) {
       for (const auto& m : methods) {
         const GroupSummary* g = find(m, cat, seen);
         const char* none = m == "floor" && !has_floor ? "n/a" : "-";
-        out << " " << (g ? fixed(g->mean.rmse_kpa, m == "floor" ? 3 : 2) : none) << " | "
-            << (g ? fixed(g->mean.binary_r2, 3) : none) << " |";
+        out << " " << (g ? fixed_text(g->mean.rmse_kpa, m == "floor" ? 3 : 2) : none) << " | "
+            << (g ? fixed_text(g->mean.binary_r2, 3) : none) << " |";
       }
       if (has_model) {
         const GroupSummary* g = find("model", cat, seen);
-        out << " " << (g ? fixed(g->mean.cop_error_cm, 2) : "-") << " | "
-            << (g ? fixed(g->mean.force_error_pct, 1) : "-") << " | "
-            << (g ? fixed(g->mean.contact_iou, 3) : "-") << " |";
+        out << " " << (g ? fixed_text(g->mean.cop_error_cm, 2) : "-") << " | "
+            << (g ? fixed_text(g->mean.force_error_pct, 1) : "-") << " | "
+            << (g ? fixed_text(g->mean.contact_iou, 3) : "-") << " |";
       }
       out << "\n";
     }

@@ -8,18 +8,13 @@
 #include <filesystem>
 #include <sstream>
 
+#include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/viz.hpp"
 
 namespace ptnet::har {
 namespace {
-
-std::string fixed(double v, int digits = 3) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -30,7 +25,7 @@ std::string join(const std::vector<std::string>& v) {
 std::string spread_cell(const std::string& source, const std::string& metric, double mean,
                         double sd) {
   return "<td class=\"num\" data-source=\"" + html_escape(source) + "\" data-metric=\"" + metric +
-         "\">" + fixed(mean) + " &plusmn; " + fixed(sd) + "</td>";
+         "\">" + fixed_text(mean) + " &plusmn; " + fixed_text(sd) + "</td>";
 }
 
 std::string table3_html(const HarResult& r) {
@@ -50,11 +45,11 @@ std::string table3_html(const HarResult& r) {
   o << "</tr>\n<tr><td>Accuracy (pseudo labels), mean</td>";
   for (const auto& s : r.sources)
     o << "<td class=\"num\" data-source=\"" << html_escape(s.source)
-      << "\" data-metric=\"accuracy\">" << fixed(s.accuracy_mean) << "</td>";
+      << "\" data-metric=\"accuracy\">" << fixed_text(s.accuracy_mean) << "</td>";
   o << "</tr>\n<tr><td>Macro F1 per run (pseudo labels)</td>";
   for (const auto& s : r.sources) {
     std::string runs;
-    for (double v : s.macro_f1) runs += (runs.empty() ? "" : " ") + fixed(v);
+    for (double v : s.macro_f1) runs += (runs.empty() ? "" : " ") + fixed_text(v);
     o << "<td class=\"num runs\">" << runs << "</td>";
   }
   o << "</tr>\n<tr><td>Training windows</td>";
@@ -98,8 +93,8 @@ std::string confusion_html(const std::string& title, const Eigen::MatrixXi& m,
     const double total = std::max(1, m.row(i).sum());
     for (int j = 0; j < m.cols(); ++j) {
       const double share = m(i, j) / total;
-      o << "<td class=\"num\" style=\"background: rgba(8, 48, 107, " << fixed(share, 2) << ")"
-        << (share > 0.5 ? "; color: #fff" : "") << "\" title=\"" << fixed(100 * share, 1)
+      o << "<td class=\"num\" style=\"background: rgba(8, 48, 107, " << fixed_text(share, 2) << ")"
+        << (share > 0.5 ? "; color: #fff" : "") << "\" title=\"" << fixed_text(100 * share, 1)
         << " % of row\">" << m(i, j) << "</td>";
     }
     o << "</tr>\n";
@@ -121,8 +116,8 @@ std::vector<std::string> write_html_report(const std::string& out_dir, const Har
     << " windows), test subjects " << html_escape(join(r.test_subjects)) << " (" << r.test_windows
     << " windows), stride " << r.stride << ", " << r.runs
     << " seeded runs per source. Pseudo labels: mean shift on " << r.pca_components
-    << " PCA components (" << fixed(100 * r.pca_explained, 1) << " % of variance), bandwidth "
-    << fixed(r.bandwidth) << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", "
+    << " PCA components (" << fixed_text(100 * r.pca_explained, 1) << " % of variance), bandwidth "
+    << fixed_text(r.bandwidth) << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", "
     << r.clusters << " clusters. Every number: <a href=\"results.json\">results.json</a>.</p>\n";
   b << "<h2>Table 3: macro F1 by training source</h2>\n" << table3_html(r);
   write_text_file(path("f1.svg"), f1_chart(r), force);
@@ -162,21 +157,21 @@ std::vector<std::string> write_html_report(const std::string& out_dir, const Har
       << (c < int(r.cluster_sizes.size()) ? r.cluster_sizes[std::size_t(c)] : 0) << ")</td>";
     for (const auto& s : r.sources)
       b << "<td class=\"num\">"
-        << (c < int(s.class_f1_mean.size()) ? fixed(s.class_f1_mean[std::size_t(c)]) : "&ndash;")
+        << (c < int(s.class_f1_mean.size()) ? fixed_text(s.class_f1_mean[std::size_t(c)]) : "&ndash;")
         << "</td>";
     b << "</tr>\n";
   }
   b << "</table>\n";
   if (!r.categories.empty())
-    b << "<p>Cluster purity against categories: " << fixed(r.cluster_purity) << "</p>\n";
+    b << "<p>Cluster purity against categories: " << fixed_text(r.cluster_purity) << "</p>\n";
 
   b << "<h2>Synthetic bodies</h2>\n<table><tr><th>id</th><th>sex</th><th>height "
        "(cm)</th><th>weight (kg)</th></tr>\n";
   for (const auto& body : r.synthetic_bodies)
     b << "<tr><td>" << html_escape(body.id) << "</td><td>" << sex_name(body.sex)
-      << "</td><td class=\"num\">" << fixed(body.height_cm, 1) << "</td><td class=\"num\">"
-      << fixed(body.weight_kg, 1) << "</td></tr>\n";
-  b << "</table>\n<p class=\"note\">Time: " << fixed(r.seconds, 1) << " s.</p>\n";
+      << "</td><td class=\"num\">" << fixed_text(body.height_cm, 1) << "</td><td class=\"num\">"
+      << fixed_text(body.weight_kg, 1) << "</td></tr>\n";
+  b << "</table>\n<p class=\"note\">Time: " << fixed_text(r.seconds, 1) << " s.</p>\n";
   write_text_file(path("index.html"), html_page("ptnet HAR validation", b.str()), force);
   written.push_back(path("index.html"));
   return written;

@@ -4,16 +4,11 @@
 #include <cstdio>
 #include <sstream>
 
+#include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 
 namespace ptnet::har {
 namespace {
-
-std::string fixed(double v, int digits = 3) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
 
 std::string pad(const std::string& s, std::size_t width) {
   return s.size() >= width ? s : s + std::string(width - s.size(), ' ');
@@ -50,13 +45,13 @@ std::string format_table(const HarResult& r) {
     << r.train_windows << " windows), test subjects " << join(r.test_subjects) << " ("
     << r.test_windows << " windows), stride " << r.stride << ", " << r.runs << " runs\n";
   o << "Pseudo labels: mean shift on " << r.pca_components << " PCA components ("
-    << fixed(100 * r.pca_explained, 1) << " % of variance), bandwidth " << fixed(r.bandwidth)
+    << fixed_text(100 * r.pca_explained, 1) << " % of variance), bandwidth " << fixed_text(r.bandwidth)
     << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", " << r.clusters << " clusters\n";
   o << "Synthetic: " << r.synthetic_bodies.size() << " bodies (";
   for (std::size_t i = 0; i < r.synthetic_bodies.size(); ++i) {
     const BodySpec& b = r.synthetic_bodies[i];
-    o << (i ? "; " : "") << b.id << " " << sex_word(b.sex) << " " << fixed(b.height_cm, 1) << " cm "
-      << fixed(b.weight_kg, 1) << " kg";
+    o << (i ? "; " : "") << b.id << " " << sex_word(b.sex) << " " << fixed_text(b.height_cm, 1) << " cm "
+      << fixed_text(b.weight_kg, 1) << " kg";
   }
   o << ")\n\n";
   const std::size_t w0 = 32, w = 17;
@@ -66,13 +61,13 @@ std::string format_table(const HarResult& r) {
   for (std::size_t i = 0; i < r.sources.size(); ++i) o << "+" << std::string(w + 1, '-');
   o << "\n" << pad("Macro F1 score (pseudo labels)", w0);
   for (const auto& s : r.sources)
-    o << "| " << pad(fixed(s.macro_f1_mean) + " +- " + fixed(s.macro_f1_std), w);
+    o << "| " << pad(fixed_text(s.macro_f1_mean) + " +- " + fixed_text(s.macro_f1_std), w);
   o << "\n" << pad("Accuracy (pseudo labels)", w0);
-  for (const auto& s : r.sources) o << "| " << pad(fixed(s.accuracy_mean), w);
+  for (const auto& s : r.sources) o << "| " << pad(fixed_text(s.accuracy_mean), w);
   if (!r.sources.empty() && !r.sources[0].category_macro_f1.empty()) {
     o << "\n" << pad("Macro F1 score (categories)", w0);
     for (const auto& s : r.sources)
-      o << "| " << pad(fixed(s.category_macro_f1_mean) + " +- " + fixed(s.category_macro_f1_std), w);
+      o << "| " << pad(fixed_text(s.category_macro_f1_mean) + " +- " + fixed_text(s.category_macro_f1_std), w);
   }
   o << "\n" << pad("Training windows", w0);
   for (const auto& s : r.sources) o << "| " << pad(std::to_string(s.train_windows), w);
@@ -88,12 +83,12 @@ std::string format_table(const HarResult& r) {
       label += " mostly " + r.categories[best];
     }
     o << pad(label, w0);
-    for (const auto& s : r.sources) o << "| " << pad(fixed(s.class_f1_mean[c]), w);
+    for (const auto& s : r.sources) o << "| " << pad(fixed_text(s.class_f1_mean[c]), w);
     o << "\n";
   }
   if (!r.categories.empty())
-    o << "Cluster purity against categories: " << fixed(r.cluster_purity) << "\n";
-  o << "Time: " << fixed(r.seconds, 1) << " s\n";
+    o << "Cluster purity against categories: " << fixed_text(r.cluster_purity) << "\n";
+  o << "Time: " << fixed_text(r.seconds, 1) << " s\n";
   return o.str();
 }
 

@@ -109,8 +109,6 @@ void check_options(const TrainOptions& o) {
   at_least("samples-per-epoch", double(o.samples_per_epoch), 0);
   at_least("val-samples", double(o.val_samples), 0);
   at_least("crop-rows", o.crop_rows, 0);
-  if (o.crop_rows > 0 && o.model.arch != Arch::frame)
-    throw Error("--crop-rows: only --arch frame (fully convolutional) trains on crops");
   if (!(o.lr > 0 && std::isfinite(o.lr))) throw Error("--lr: must be > 0");
 }
 
@@ -559,7 +557,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
         const std::vector<WindowRef> part(refs.begin() + std::ptrdiff_t(m),
                                           refs.begin() + std::ptrdiff_t(std::min(refs.size(), m + micro)));
         Batch b = batcher.load(part);
-        if (o.crop_rows > 0) crop_to_pressure(b, o.crop_rows);
+        if (o.crop_rows > 0 && md.model.arch == Arch::frame) crop_to_pressure(b, o.crop_rows);
         auto loss = loss_fn(o, net->forward_raw(b.x, b.sa, b.ta), b.y) *
                     (double(part.size()) / double(refs.size()));
         const double part_loss = loss.item<double>();

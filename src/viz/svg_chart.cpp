@@ -104,6 +104,23 @@ void y_axis(std::ostringstream& o, const Frame& f, const Axis& a, const std::str
     << num(cy) << ")\" fill=\"" << kAxisInk << "\">" << html_escape(label) << "</text>\n";
 }
 
+// The plot area of a chart of this size, inside the margins.
+Frame chart_frame(int width, int height) {
+  return {width, height, double(kLeft), double(width - kRight), double(kTop), double(height - kBottom)};
+}
+
+// The SVG opened with its title, the series' legend and the y axis.
+template <typename Series>
+std::ostringstream open_chart(const Frame& f, const std::string& title, const std::vector<Series>& series,
+                              bool lines, const Axis& a, const std::string& y_label) {
+  std::ostringstream o = open_svg(f, title);
+  std::vector<std::string> names;
+  for (const auto& s : series) names.push_back(s.name);
+  legend(o, f, names, lines);
+  y_axis(o, f, a, y_label);
+  return o;
+}
+
 void check_size(int width, int height) {
   if (width < kLeft + kRight + 40 || height < kTop + kBottom + 40)
     throw Error("chart: " + std::to_string(width) + " x " + std::to_string(height) +
@@ -136,14 +153,8 @@ std::string svg_bar_chart(const BarChart& c) {
     }
   }
   const Axis a = make_axis(lo, hi, true);
-  const Frame f{c.width,       c.height,
-                double(kLeft), double(c.width - kRight),
-                double(kTop),  double(c.height - kBottom)};
-  std::ostringstream o = open_svg(f, c.title);
-  std::vector<std::string> names;
-  for (const auto& s : c.series) names.push_back(s.name);
-  legend(o, f, names, false);
-  y_axis(o, f, a, c.y_label);
+  const Frame f = chart_frame(c.width, c.height);
+  std::ostringstream o = open_chart(f, c.title, c.series, /*lines=*/false, a, c.y_label);
   const double group_w = (f.x1 - f.x0) / double(std::max<std::size_t>(1, c.groups.size()));
   const double bar_w = group_w * 0.8 / double(std::max<std::size_t>(1, c.series.size()));
   const double zero = a.px(0, f.y1, f.y0);
@@ -196,14 +207,8 @@ std::string svg_line_chart(const LineChart& c) {
   Axis xa;
   xa.lo = xlo, xa.hi = xhi, xa.step = nice_step((xhi - xlo) / 8);
   if (whole_x) xa.step = std::max(1.0, std::floor(xa.step));
-  const Frame f{c.width,       c.height,
-                double(kLeft), double(c.width - kRight),
-                double(kTop),  double(c.height - kBottom)};
-  std::ostringstream o = open_svg(f, c.title);
-  std::vector<std::string> names;
-  for (const auto& s : c.series) names.push_back(s.name);
-  legend(o, f, names, true);
-  y_axis(o, f, ya, c.y_label);
+  const Frame f = chart_frame(c.width, c.height);
+  std::ostringstream o = open_chart(f, c.title, c.series, /*lines=*/true, ya, c.y_label);
   for (double v = std::ceil(xlo / xa.step - 1e-9) * xa.step; v <= xhi + xa.step * 1e-6;
        v += xa.step) {
     const double x = xa.px(v, f.x0, f.x1);
