@@ -12,34 +12,29 @@
 #include "ptnet/model.hpp"
 #include "ptnet/transfer.hpp"
 #include "ptnet/zip_check.hpp"
+#include "cli_test_util.hpp"
+#include "data_test_util.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;
 using namespace ptnet::testing;
 namespace fs = std::filesystem;
+using ptnet::testing_cli::slurp;
+using ptnet::testing_util::error_of;
 
 namespace {
 
 class IntegrityTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    base_ = fs::temp_directory_path() / ("ptnet_model_integrity_" + std::to_string(::getpid()));
-    fs::remove_all(base_);
-    fs::create_directories(base_);
+    temp_ = new testing_util::TempDir("model_integrity");
+    base_ = temp_->path;
     src_ = new MemorySource(synth_source(3, 2, 90));
     train(*src_, (base_ / "model").string(), synth_options(2));
   }
   static void TearDownTestSuite() {
-    fs::remove_all(base_);
+    delete temp_;  // removes the folder
     delete src_;
-  }
-  static std::string error_of(const std::function<void()>& f) {
-    try {
-      f();
-    } catch (const Error& e) {
-      return e.what();
-    }
-    return "no error";
   }
   static fs::path copy_model(const std::string& name) {
     const fs::path p = base_ / name;
@@ -47,16 +42,13 @@ class IntegrityTest : public ::testing::Test {
     fs::copy(base_ / "model", p);
     return p;
   }
-  static std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
   // Flips `n` bytes in the middle of the file (inside tensor data).
   static void flip_bytes(const fs::path& p, int n) {
     std::string b = slurp(p);
     for (int i = 0; i < n; ++i) b[b.size() / 2 + std::size_t(i)] ^= 0x5a;
     std::ofstream(p, std::ios::binary | std::ios::trunc) << b;
   }
+  static inline testing_util::TempDir* temp_ = nullptr;
   static inline fs::path base_;
   static inline MemorySource* src_ = nullptr;
 };
