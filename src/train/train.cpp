@@ -207,11 +207,12 @@ void crop_to_pressure(Batch& b, int rows) {
   auto profile = (b.x + b.y).sum({1, 3});                                   // [N,H]
   auto mass = profile.sum(1);                                               // [N]
   auto centre = (profile * torch::arange(h, profile.options())).sum(1) / mass.clamp_min(1e-12);
-  auto cpu_centre = centre.cpu();
-  auto cpu_mass = mass.cpu();
+  const torch::Tensor centre_cpu = centre.cpu(), mass_cpu = mass.cpu();
+  const auto centres = centre_cpu.accessor<float, 1>();
+  const auto masses = mass_cpu.accessor<float, 1>();
   std::vector<torch::Tensor> xs, ys;
   for (int64_t i = 0; i < n; ++i) {
-    const double c = cpu_mass[i].item<double>() > 0 ? cpu_centre[i].item<double>() : 0.5 * double(h);
+    const double c = masses[i] > 0 ? double(centres[i]) : 0.5 * double(h);
     const int64_t r0 = std::clamp<int64_t>(std::llround(c - 0.5 * rows), 0, h - rows);
     xs.push_back(b.x[i].narrow(1, r0, rows));
     ys.push_back(b.y[i].narrow(1, r0, rows));
