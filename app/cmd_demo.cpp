@@ -39,8 +39,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
   o.epochs = c.epochs;
   o.seed = c.seed;
   o.force = c.force;
-  o.quiet = quiet;
-  o.progress = train_progress(o.epochs);
+  o.progress = train_progress();
   const auto source = open_dataset_source(data_path);
   const TrainResult t = train(*source, model_dir, o);
 

@@ -61,7 +61,7 @@ void run(const TrainCli& c) {
     o.model.arch = parse_arch(c.arch);
     // The window networks see `window` frames as channels: the paper's 30,
     // not the frame network's 1 of the fast preset (unless --window says so).
-    if (o.model.arch != Arch::frame) o.model.window = kWindow;
+    if (o.model.arch != Arch::frame) o.model.window = kWindowFrames;
   }
   if (!c.align.empty()) o.model.align = parse_align(c.align);
   if (!c.channels.empty()) o.model.channels = parse_channels(c.channels);
@@ -81,8 +81,7 @@ void run(const TrainCli& c) {
   o.resume = c.resume;
   o.fit_contact_threshold = !c.no_contact_threshold;
   o.force = c.force;
-  o.quiet = globals().quiet;
-  o.progress = train_progress(o.epochs);
+  o.progress = train_progress();
   if (o.resume && !o.init.empty()) throw Error("--resume and --init exclude each other");
   auto source = open_dataset_source(c.data);
   train(*source, c.out, o);

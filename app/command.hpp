@@ -3,6 +3,8 @@
 // Each app/cmd_<name>.cpp defines `void setup(CLI::App& app)` that adds its
 // subcommand (options bound to an options struct, a callback that runs it) and
 // registers it with PTNET_COMMAND(order, setup). main() adds them in order.
+// Naming: the struct holding a command's option values is `<Command>Cli`
+// (TrainCli, ValidateHarCli); `*Options` names the library's option structs.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -22,6 +24,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/parallel.hpp"
+#include "ptnet/progress.hpp"
 
 namespace ptnet::cli {
 
@@ -128,19 +131,28 @@ inline void print_progress(const std::string& what, long long done, long long to
   std::cerr << (tty ? "\r\033[K" : "") << line << (end || !tty ? "\n" : "") << std::flush;
 }
 
-// TrainOptions::progress for `ptnet train` and `ptnet demo`: inside each epoch
+// TrainOptions::progress for `ptnet train` and `ptnet demo`: the library's
+// lines (setup, one per epoch, final metrics) on stderr; inside each epoch
 // "epoch 3/15: 1024/4096 windows, 512 windows/s, ETA 6 s, run ETA 1 min 40 s"
-// on a terminal (transient; a log keeps the library's one line per epoch).
-// The run's ETA counts the remaining epochs at the last whole epoch's wall
-// time (validation included); early stopping may end the run sooner.
-inline std::function<void(int, std::int64_t, std::int64_t)> train_progress(int epochs) {
+// on a terminal (transient; a log keeps the one line per epoch). The run's
+// ETA counts the remaining epochs at the last whole epoch's wall time
+// (validation included); early stopping may end the run sooner. Nothing with
+// --quiet.
+inline ProgressFn train_progress() {
   struct EpochClock {
     int epoch = 0;
     std::chrono::steady_clock::time_point start;
     double last_epoch_s = 0;  // wall time of the last whole epoch
   };
   auto clock = std::make_shared<EpochClock>();
-  return [clock, epochs](int epoch, std::int64_t done, std::int64_t total) {
+  return [clock](const Progress& p) {
+    if (globals().quiet) return;
+    if (!p.line.empty()) {
+      std::cerr << p.line << std::endl;
+      return;
+    }
+    const int epoch = p.step, epochs = p.steps;
+    const std::int64_t done = p.done, total = p.total;
     const auto now = std::chrono::steady_clock::now();
     if (epoch != clock->epoch) {
       if (clock->epoch > 0) clock->last_epoch_s = std::chrono::duration<double>(now - clock->start).count();
@@ -156,7 +168,7 @@ inline std::function<void(int, std::int64_t, std::int64_t)> train_progress(int e
       const double this_epoch_left = std::max(0.0, epoch_s - in_epoch);
       extra = "run ETA " + format_duration(this_epoch_left + epoch_s * double(epochs - epoch));
     }
-    print_progress("epoch " + std::to_string(epoch) + "/" + std::to_string(epochs), done, total, "windows", extra,
+    print_progress("epoch " + std::to_string(epoch) + "/" + std::to_string(epochs), done, total, p.unit, extra,
                    /*transient=*/true);
   };
 }

@@ -25,8 +25,10 @@ TEST(TrainProgress, CalledAfterEachOptimiserStep) {
   TrainOptions o = testing::synth_options(/*epochs=*/2);
   o.samples_per_epoch = 100;  // batch 16: 6 full steps and one of 4
   std::vector<std::array<std::int64_t, 3>> calls;
-  o.progress = [&](int epoch, std::int64_t done, std::int64_t total) {
-    calls.push_back({epoch, done, total});
+  std::vector<std::string> lines;
+  o.progress = [&](const Progress& p) {
+    if (!p.line.empty()) lines.push_back(p.line);
+    else calls.push_back({p.step, p.done, p.total});
   };
   train(src, dir.file("model"), o);
   ASSERT_EQ(calls.size(), 14u);
@@ -36,6 +38,10 @@ TEST(TrainProgress, CalledAfterEachOptimiserStep) {
     EXPECT_EQ(calls[i][1], std::min<std::int64_t>(16 * step, 100));
     EXPECT_EQ(calls[i][2], 100);
   }
+  // The library prints nothing: its lines come through the same callback.
+  ASSERT_EQ(lines.size(), 4u);  // setup, two epochs, final metrics
+  EXPECT_EQ(lines[1].rfind("[epoch 1/2] train ", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[3].rfind("train: best epoch ", 0), 0u) << lines[3];
 }
 
 class TrainProgressCli : public ::testing::Test {

@@ -72,7 +72,7 @@ inline TrainOptions synth_options(int epochs = 6, Arch arch = Arch::faithful, Al
   TrainOptions o = TrainOptions::from_preset("fast");
   o.model.arch = arch;
   o.model.align = align;
-  o.model.window = arch == Arch::frame ? 1 : kWindow;  // the frame network works per frame
+  o.model.window = arch == Arch::frame ? 1 : kWindowFrames;  // the frame network works per frame
   o.model.channels = {4, 8, 8};
   o.model.hidden = 32;
   o.model.latent = 32;
@@ -85,7 +85,6 @@ inline TrainOptions synth_options(int epochs = 6, Arch arch = Arch::faithful, Al
   o.samples_per_epoch = 256;
   o.val_samples = 128;
   o.threads = 1;
-  o.quiet = true;
   return o;
 }
 

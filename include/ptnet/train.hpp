@@ -29,6 +29,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/model_config.hpp"
 #include "ptnet/pressure.hpp"
+#include "ptnet/progress.hpp"
 
 namespace ptnet {
 
@@ -88,7 +89,7 @@ bool is_training_sequence(const BodySpec& body, const SequenceMeta& meta);
 // ------------------------------------------------------------ window index
 
 struct WindowOptions {
-  int window = kWindow;           // frames per window
+  int window = kWindowFrames;         // frames per window
   int stride = 1;                 // frames between window starts
   double val_fraction = 0.1;      // share of each motion's window starts held out
   std::uint64_t seed = 1;         // places the validation blocks
@@ -194,18 +195,16 @@ struct TrainOptions {
   std::string init;                 // start from this model folder's weights
   bool identity_pairs = false;      // WindowOptions::identity_pairs (fine-tuning on recordings)
   bool force = false;               // overwrite an existing model folder
-  bool quiet = false;               // no per-epoch lines on stderr
-  // Called after each optimiser step with (epoch (1-based), training windows
-  // done in this epoch, windows in the epoch); the library prints nothing itself.
-  std::function<void(int, std::int64_t, std::int64_t)> progress;
+  // Reports (the library prints nothing itself): after each optimiser step
+  // a count {what "train", done/total training windows of the epoch, unit
+  // "windows", step/steps = epoch (1-based)/epochs}; the setup, each epoch
+  // ("[epoch 3/15] train 0.0412 val 0.0398 lr 5.0e-3 1.9 s") and the final
+  // metrics as lines.
+  ProgressFn progress;
 
-  // "paper": the paper's network (faithful, no alignment), batch 1028, lr
-  // 0.01 halved every 20 epochs, 500 epochs, patience 50, widths
-  // 64/128/256, stride 1, every window, 2 threads.
-  // "fast": ours -- the per-frame conditional U-Net on body-scale aligned
-  // input (--arch frame --align zoom --window 1), widths 16/32/48, FiLM MLP
-  // 64, batch 64 frames on 40-row crops, lr 3e-3 halved every 4 epochs, 12
-  // epochs of 8192 frames, 4096 validation frames, 1 thread.
+  // "paper": the paper's network and schedule (the defaults above). "fast":
+  // ours, for two CPU cores. The values are set in one place, from_preset()
+  // (src/train/train.cpp); summary() describes them (`ptnet train --help`).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
   // One line naming the architecture and schedule ("frame 16/32/48 on zoom-aligned
   // input, window 1, batch 64, lr 0.003 halved every 4 epochs, ..."): the

@@ -431,40 +431,56 @@ class LeftoverGuard {
   bool active_;
 };
 
-}  // namespace
+// ---- the phases of train(), in order
 
-TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& o) {
-  check_options(o);
-  const auto t_start = std::chrono::steady_clock::now();
-  const torch::Device device = parse_device(o.device);
-  if (o.threads > 0) torch::set_num_threads(o.threads);
-  const fs::path dir(out_dir);
-  const std::string config_path = (dir / "config.json").string();
-  const std::string ckpt_path = (dir / "checkpoint.pt").string();
-  const std::string best_path = (dir / "model.pt").string();
+// What the phases share: the model folder's files and what goes into config.json.
+struct Run {
+  const PressureSource& source;
+  const TrainOptions& o;
+  fs::path dir;
+  std::string config_path, ckpt_path, best_path;
+  torch::Device device;
+  ModelDir md;        // written to config.json
+  ModelDir previous;  // --resume: the folder's config; --init: the other model's
+  std::string digest;
 
+  Run(const PressureSource& src, const std::string& out_dir, const TrainOptions& options)
+      : source(src), o(options), dir(out_dir), config_path((dir / "config.json").string()),
+        ckpt_path((dir / "checkpoint.pt").string()), best_path((dir / "model.pt").string()),
+        device(parse_device(options.device)) {}
+  void log(const std::string& line) const {
+    if (o.progress) o.progress(progress_line("train", line));
+  }
+  void write_config() { write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true); }
+};
+
+// The architecture from the options, the resumed folder or the --init model,
+// checked against the data's mat and frame rate and the available memory.
+void plan_model(Run& run) {
+  const PressureSource& source = run.source;
+  const TrainOptions& o = run.o;
   const MatSpec mat = source.mat();
-  const std::string digest = source_digest(source);
-  ModelDir md;
-  md.path = out_dir;
+  ModelDir& md = run.md;
+  md.path = run.dir.string();
   md.mat = mat;
   md.fps = source.fps();
   md.model = o.model;
   md.model.rows = mat.rows;
   md.model.cols = mat.cols;
-
-  ModelDir previous;  // --resume: the folder's config; --init: the other model's
+  run.digest = source_digest(source);
   if (o.resume) {
-    previous = read_model_dir(out_dir);
-    if (previous.data.value("digest", "") != digest)
-      throw Error::in(config_path, "was trained on other data (digest " + previous.data.value("digest", "?") +
-                                       ", " + source.path() + " has " + digest + "); cannot resume");
-    md.model = previous.model;
-    md.integrity = previous.integrity;
+    run.previous = read_model_dir(md.path);
+    const std::string recorded = run.previous.data.value("digest", "");
+    if (recorded != run.digest)
+      throw Error::in(run.config_path, "was trained on other data (digest " + run.previous.data.value("digest", "?") +
+                                           ", " + source.path() + " has " + run.digest + "); cannot resume");
+    md.model = run.previous.model;
+    md.integrity = run.previous.integrity;
   } else if (!o.init.empty()) {
-    previous = read_model_dir(o.init);
-    md.model = previous.model;  // fine-tuning keeps the architecture
+    run.previous = read_model_dir(o.init);
+    md.model = run.previous.model;  // fine-tuning keeps the architecture
   }
+  const ModelDir& previous = run.previous;
   if ((o.resume || !o.init.empty()) && std::abs(previous.fps - source.fps()) > 1e-6 * previous.fps)
     throw Error::in(source.path(), "is at " + number_text(source.fps()) + " fps, the model at " +
                                        number_text(previous.fps) + " fps");
@@ -473,148 +489,186 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
                                        ", the model was built for " + std::to_string(md.model.rows) + " x " +
                                        std::to_string(md.model.cols));
   validate(md.model);
-  check_memory(model_memory_bytes(md.model, o.micro_batch, /*training=*/true), out_dir,
+  check_memory(model_memory_bytes(md.model, o.micro_batch, /*training=*/true), md.path,
                "the model (" + std::to_string(parameter_count(md.model)) + " parameters) in training");
+}
 
+// The lazy window index and the normalisation (fitted, or the previous
+// model's), recorded in config.json's data and options.
+WindowIndex index_windows(Run& run) {
+  const TrainOptions& o = run.o;
   WindowOptions wo;
-  wo.window = md.model.window;
+  wo.window = run.md.model.window;
   wo.stride = o.stride;
   wo.seed = o.seed;
   wo.identity_pairs = o.identity_pairs;
-  const WindowIndex index = WindowIndex::build(source, wo);
+  WindowIndex index = WindowIndex::build(run.source, wo);
   if (index.val_size() == 0)
-    throw Error::in(source.path(), "motions too short for a validation split (need >= " +
-                                       std::to_string(3 * wo.window) + " frames)");
-  md.norm = (o.resume || !o.init.empty()) ? previous.norm : fit_normalisation(source, index);
-  md.data = json{{"path", source.path()},          {"digest", digest},
-                 {"pairs", index.pairs().size()},  {"motions", index.motions().size()},
-                 {"train_windows", index.train_size()}, {"val_windows", index.val_size()},
-                 {"protocol", "role=retargeted, take=1; 9:1 per-motion time blocks"}};
-  md.options = options_json(o);
-  prepare_out_dir(out_dir, o);
-  // A fresh run that fails while setting up leaves nothing behind.
-  LeftoverGuard leftovers(out_dir, o.resume);
+    throw Error::in(run.source.path(), "motions too short for a validation split (need >= " +
+                                           std::to_string(3 * wo.window) + " frames)");
+  run.md.norm = (o.resume || !o.init.empty()) ? run.previous.norm : fit_normalisation(run.source, index);
+  run.md.data = json{{"path", run.source.path()},      {"digest", run.digest},
+                     {"pairs", index.pairs().size()},  {"motions", index.motions().size()},
+                     {"train_windows", index.train_size()}, {"val_windows", index.val_size()},
+                     {"protocol", "role=retargeted, take=1; 9:1 per-motion time blocks"}};
+  run.md.options = options_json(o);
+  return index;
+}
 
+// The network, seeded, with the --init model's weights when fine-tuning.
+PressureTransferNet build_network(const Run& run) {
+  const TrainOptions& o = run.o;
   torch::manual_seed(o.seed);
-  PressureTransferNet net(md.model);
+  PressureTransferNet net(run.md.model);
   if (!o.init.empty() && !o.resume) {
     const std::string init_weights = (fs::path(o.init) / "model.pt").string();
     load_weights(net, init_weights);
-    check_weights_digest(*net, recorded_digest(previous, "model.pt"), init_weights,
+    check_weights_digest(*net, recorded_digest(run.previous, "model.pt"), init_weights,
                          (fs::path(o.init) / "config.json").string());
   }
-  net->to(device);
-  torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(o.lr));
+  net->to(run.device);
+  return net;
+}
 
+// --resume: the checkpoint's state (its weights checked against config.json);
+// a fresh run: the initial weights as the epoch-0 checkpoint.
+State start_or_resume(Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer) {
   State s;
-  if (o.resume) {
-    s = load_checkpoint(ckpt_path, net, optimizer);
+  if (run.o.resume) {
+    s = load_checkpoint(run.ckpt_path, net, optimizer);
     int recorded_epoch = -1;
-    const std::string recorded = recorded_digest(previous, "checkpoint.pt", &recorded_epoch);
+    const std::string recorded = recorded_digest(run.previous, "checkpoint.pt", &recorded_epoch);
     // A kill between the checkpoint's rename and config.json's leaves the
     // config one epoch behind: that checkpoint passed its CRCs and is taken.
-    if (recorded_epoch != s.epoch - 1) check_weights_digest(*net, recorded, ckpt_path, config_path);
+    if (recorded_epoch != s.epoch - 1) check_weights_digest(*net, recorded, run.ckpt_path, run.config_path);
   } else {
-    save_checkpoint(ckpt_path, net, optimizer, s);  // epoch 0: the initial weights
-    record_digest(md, "checkpoint.pt", weights_digest(*net), 0);
-    write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+    save_checkpoint(run.ckpt_path, net, optimizer, s);  // epoch 0: the initial weights
+    record_digest(run.md, "checkpoint.pt", weights_digest(*net), 0);
+    run.write_config();
   }
+  return s;
+}
 
-  auto log = [&](const std::string& line) {
-    if (!o.quiet) std::cerr << line << std::endl;
-  };
-  log("train: " + std::to_string(index.pairs().size()) + " pairs, " + std::to_string(index.train_size()) +
-      " training / " + std::to_string(index.val_size()) + " validation windows, " +
-      std::to_string(parameter_count(*net)) + " parameters (" + arch_name(md.model.arch) + " " +
-      std::to_string(md.model.channels[0]) + "/" + std::to_string(md.model.channels[1]) + "/" +
-      std::to_string(md.model.channels[2]) + "), pressure scale " + fmt("%.3g", md.norm.pressure_scale_kpa) +
-      " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
-      (o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
+void log_setup(const Run& run, const WindowIndex& index, const PressureTransferNet& net, const State& s) {
+  const ModelConfig& m = run.md.model;
+  run.log("train: " + std::to_string(index.pairs().size()) + " pairs, " + std::to_string(index.train_size()) +
+          " training / " + std::to_string(index.val_size()) + " validation windows, " +
+          std::to_string(parameter_count(*net)) + " parameters (" + arch_name(m.arch) + " " +
+          std::to_string(m.channels[0]) + "/" + std::to_string(m.channels[1]) + "/" +
+          std::to_string(m.channels[2]) + "), pressure scale " + fmt("%.3g", run.md.norm.pressure_scale_kpa) +
+          " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
+          (run.o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
+}
 
-  Batcher batcher(source, index, md.norm, o.cache_mb, device, md.model.align);
-  leftovers.done();  // from here a failure names what it keeps (the checkpoint)
-  TrainResult result;
+// One epoch of optimiser steps (epoch0 0-based); the mean training loss.
+double train_epoch(const Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer, Batcher& batcher,
+                   const WindowIndex& index, int epoch0, const State& s) {
+  const TrainOptions& o = run.o;
+  net->train();
+  const auto order = epoch_order(o, index, epoch0);
+  double loss_sum = 0;
+  std::int64_t seen = 0;
+  std::vector<WindowRef> refs;
+  for (std::size_t i = 0; i < order.size(); i += std::size_t(o.batch)) {
+    refs.clear();
+    for (std::size_t j = i; j < std::min(order.size(), i + std::size_t(o.batch)); ++j)
+      refs.push_back(index.train(order[j]));
+    // One optimiser step per batch; gradients accumulate over micro-batches,
+    // each loss weighted by its share of the batch (= the batch mean).
+    optimizer.zero_grad();
+    double l = 0;
+    const std::size_t micro = std::size_t(std::max(1, o.micro_batch));
+    for (std::size_t m = 0; m < refs.size(); m += micro) {
+      const std::vector<WindowRef> part(refs.begin() + std::ptrdiff_t(m),
+                                        refs.begin() + std::ptrdiff_t(std::min(refs.size(), m + micro)));
+      Batch b = batcher.load(part);
+      if (o.crop_rows > 0 && run.md.model.arch == Arch::frame) crop_to_pressure(b, o.crop_rows);
+      auto loss = loss_fn(o, net->forward_raw(b.x, b.sa, b.ta), b.y) * (double(part.size()) / double(refs.size()));
+      const double part_loss = loss.item<double>();
+      if (!std::isfinite(part_loss))
+        throw Error("training diverged: loss is " + std::string(std::isnan(part_loss) ? "NaN" : "infinite") +
+                    " at epoch " + std::to_string(epoch0 + 1) + ", batch " + std::to_string(i / o.batch + 1) +
+                    " (try a lower --lr); the last good checkpoint (epoch " + std::to_string(s.epoch) +
+                    ") is kept in " + run.ckpt_path);
+      loss.backward();
+      l += part_loss;
+    }
+    optimizer.step();
+    loss_sum += l * double(refs.size());
+    seen += std::int64_t(refs.size());
+    if (o.progress) {
+      Progress p = progress_count("train", seen, std::int64_t(order.size()), "windows");
+      p.step = epoch0 + 1;
+      p.steps = o.epochs;
+      o.progress(p);
+    }
+  }
+  return loss_sum / double(seen);
+}
+
+// After an epoch: the best weights when validation improved, the history,
+// the checkpoint and config.json; the epoch's log line.
+void record_epoch(Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer, State& s, int epoch0,
+                  double train_loss, double val_loss, double lr, double secs) {
+  s.epoch = epoch0 + 1;
+  if (epoch0 == 0) s.first_val = val_loss;
+  if (val_loss < s.best_val) {
+    s.best_val = val_loss;
+    s.best_epoch = epoch0 + 1;
+    s.bad_epochs = 0;
+    save_weights(net, run.best_path);
+    record_digest(run.md, "model.pt", weights_digest(*net));
+    run.write_config();
+  } else {
+    ++s.bad_epochs;
+  }
+  s.history += std::to_string(epoch0 + 1) + "," + fmt("%.6g", train_loss) + "," + fmt("%.6g", val_loss) + "," +
+               fmt("%.6g", lr) + "," + fmt("%.3f", secs) + "\n";
+  save_checkpoint(run.ckpt_path, net, optimizer, s);
+  record_digest(run.md, "checkpoint.pt", weights_digest(*net), s.epoch);
+  run.write_config();
+  write_text_file((run.dir / "history.csv").string(), s.history, /*force=*/true);
+  char line[160];
+  std::snprintf(line, sizeof line, "[epoch %d/%d] train %.6f val %.6f lr %.1e %.1f s", epoch0 + 1, run.o.epochs,
+                train_loss, val_loss, lr, secs);
+  run.log(line);
+}
+
+// The epochs, until the last one or early stopping.
+void run_epochs(Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer, Batcher& batcher,
+                const WindowIndex& index, State& s) {
+  const TrainOptions& o = run.o;
   const bool finished_before = s.epoch >= o.epochs || s.bad_epochs >= o.patience;
   for (int e = s.epoch; e < o.epochs && s.bad_epochs < o.patience && !finished_before; ++e) {
     const auto t0 = std::chrono::steady_clock::now();
     const double lr = lr_at(o, e);
-    for (auto& group : optimizer.param_groups())
-      static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
-    net->train();
-    const auto order = epoch_order(o, index, e);
-    double loss_sum = 0;
-    std::int64_t seen = 0;
-    std::vector<WindowRef> refs;
-    for (std::size_t i = 0; i < order.size(); i += std::size_t(o.batch)) {
-      refs.clear();
-      for (std::size_t j = i; j < std::min(order.size(), i + std::size_t(o.batch)); ++j)
-        refs.push_back(index.train(order[j]));
-      // One optimiser step per batch; gradients accumulate over micro-batches,
-      // each loss weighted by its share of the batch (= the batch mean).
-      optimizer.zero_grad();
-      double l = 0;
-      const std::size_t micro = std::size_t(std::max(1, o.micro_batch));
-      for (std::size_t m = 0; m < refs.size(); m += micro) {
-        const std::vector<WindowRef> part(refs.begin() + std::ptrdiff_t(m),
-                                          refs.begin() + std::ptrdiff_t(std::min(refs.size(), m + micro)));
-        Batch b = batcher.load(part);
-        if (o.crop_rows > 0 && md.model.arch == Arch::frame) crop_to_pressure(b, o.crop_rows);
-        auto loss = loss_fn(o, net->forward_raw(b.x, b.sa, b.ta), b.y) *
-                    (double(part.size()) / double(refs.size()));
-        const double part_loss = loss.item<double>();
-        if (!std::isfinite(part_loss))
-          throw Error("training diverged: loss is " + std::string(std::isnan(part_loss) ? "NaN" : "infinite") +
-                      " at epoch " + std::to_string(e + 1) + ", batch " + std::to_string(i / o.batch + 1) +
-                      " (try a lower --lr); the last good checkpoint (epoch " + std::to_string(s.epoch) +
-                      ") is kept in " + ckpt_path);
-        loss.backward();
-        l += part_loss;
-      }
-      optimizer.step();
-      loss_sum += l * double(refs.size());
-      seen += std::int64_t(refs.size());
-      if (o.progress) o.progress(e + 1, seen, std::int64_t(order.size()));
-    }
-    const double train_loss = loss_sum / double(seen);
-    const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, false);
+    for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+    const double train_loss = train_epoch(run, net, optimizer, batcher, index, e, s);
+    const ValResult v = validate_model(net, batcher, index, o, run.md.norm.pressure_scale_kpa, false);
     if (!std::isfinite(v.mse))
       throw Error("training diverged: validation loss is not finite at epoch " + std::to_string(e + 1) +
-                  "; the last good checkpoint (epoch " + std::to_string(s.epoch) + ") is kept in " + ckpt_path);
+                  "; the last good checkpoint (epoch " + std::to_string(s.epoch) + ") is kept in " + run.ckpt_path);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    s.epoch = e + 1;
-    if (e == 0) s.first_val = v.mse;
-    if (v.mse < s.best_val) {
-      s.best_val = v.mse;
-      s.best_epoch = e + 1;
-      s.bad_epochs = 0;
-      save_weights(net, best_path);
-      record_digest(md, "model.pt", weights_digest(*net));
-      write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
-    } else {
-      ++s.bad_epochs;
-    }
-    s.history += std::to_string(e + 1) + "," + fmt("%.6g", train_loss) + "," + fmt("%.6g", v.mse) + "," +
-                 fmt("%.6g", lr) + "," + fmt("%.3f", secs) + "\n";
-    save_checkpoint(ckpt_path, net, optimizer, s);
-    record_digest(md, "checkpoint.pt", weights_digest(*net), s.epoch);
-    write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
-    write_text_file((dir / "history.csv").string(), s.history, /*force=*/true);
-    char line[160];
-    std::snprintf(line, sizeof line, "[epoch %d/%d] train %.6f val %.6f lr %.1e %.1f s", e + 1, o.epochs,
-                  train_loss, v.mse, lr, secs);
-    log(line);
+    record_epoch(run, net, optimizer, s, e, train_loss, v.mse, lr, secs);
   }
+}
 
-  // Final metrics with the best weights on the validation windows.
-  load_weights(net, best_path);
-  check_weights_digest(*net, recorded_digest(md, "model.pt"), best_path, config_path);
-  net->to(device);
+// The best weights on the validation windows: RMSE beside the baselines,
+// binary R^2, the fitted contact threshold; into config.json and the result.
+TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, const WindowIndex& index,
+                          const State& s, std::chrono::steady_clock::time_point t_start) {
+  const TrainOptions& o = run.o;
+  ModelDir& md = run.md;
+  load_weights(net, run.best_path);
+  check_weights_digest(*net, recorded_digest(md, "model.pt"), run.best_path, run.config_path);
+  net->to(run.device);
   const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true);
   // The output activation threshold that best matches the truth's contact
   // area on the validation windows (the first candidate, 0.5 kPa, is the
   // binarisation threshold itself: no change to the binary maps).
   const int best_c = int(std::max_element(v.binary_r2.begin(), v.binary_r2.end()) - v.binary_r2.begin());
   md.norm.contact_threshold_kpa = o.fit_contact_threshold ? kThresholdCandidatesKpa[best_c] : 0.0;
+  TrainResult result;
   result.epochs_run = s.epoch;
   result.best_epoch = s.best_epoch;
   result.best_val_loss = s.best_val;
@@ -622,6 +676,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
   result.val_rmse_kpa = v.rmse_kpa;
   result.stopped_early = s.bad_epochs >= o.patience;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  const double binary_r2 = v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)];
   md.metrics = json{{"epochs_run", s.epoch},
                     {"best_epoch", s.best_epoch},
                     {"best_val_loss", s.best_val},
@@ -633,21 +688,41 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
                     {"val_rmse_zero_kpa", v.zero_rmse_kpa},
                     {"val_rmse_zoom_kpa", std::isfinite(v.zoom_rmse_kpa) ? json(v.zoom_rmse_kpa) : json()},
                     {"val_binary_r2_raw", v.binary_r2.front()},
-                    {"val_binary_r2", v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)]},
+                    {"val_binary_r2", binary_r2},
                     {"val_binary_r2_copy", v.copy_binary_r2},
                     {"contact_threshold_kpa", md.norm.contact_threshold_kpa},
                     {"parameters", parameter_count(*net)}};
-  write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+  run.write_config();
   char line[320];
   std::snprintf(line, sizeof line,
                 "train: best epoch %d, val %.6f, val RMSE %.3f kPa (copy %.3f, weight-scale %.3f, "
                 "all-zero %.3f%s); binary R^2 %.3f (raw %.3f, copy %.3f) at contact threshold %.1f kPa; %.1f s",
                 s.best_epoch, s.best_val, v.rmse_kpa, v.copy_rmse_kpa, v.scale_rmse_kpa, v.zero_rmse_kpa,
                 std::isfinite(v.zoom_rmse_kpa) ? fmt(", body scale %.3f", v.zoom_rmse_kpa).c_str() : "",
-                v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)], v.binary_r2.front(),
-                v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
-  log(line);
+                binary_r2, v.binary_r2.front(), v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
+  run.log(line);
   return result;
+}
+
+}  // namespace
+
+TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& o) {
+  check_options(o);
+  const auto t_start = std::chrono::steady_clock::now();
+  Run run(source, out_dir, o);
+  if (o.threads > 0) torch::set_num_threads(o.threads);
+  plan_model(run);
+  const WindowIndex index = index_windows(run);
+  prepare_out_dir(out_dir, o);
+  LeftoverGuard leftovers(out_dir, o.resume);  // a fresh run that fails while setting up leaves nothing behind
+  PressureTransferNet net = build_network(run);
+  torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(o.lr));
+  State s = start_or_resume(run, net, optimizer);
+  log_setup(run, index, net, s);
+  Batcher batcher(source, index, run.md.norm, o.cache_mb, run.device, run.md.model.align);
+  leftovers.done();  // from here a failure names what it keeps (the checkpoint)
+  run_epochs(run, net, optimizer, batcher, index, s);
+  return final_metrics(run, net, batcher, index, s, t_start);
 }
 
 }  // namespace ptnet
