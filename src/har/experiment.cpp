@@ -15,20 +15,10 @@
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet::har {
 namespace {
-
-// Paper section 3.1: ten males 175 +- 15 cm, 75 +- 10 kg; ten females
-// 165 +- 15 cm, 65 +- 10 kg, Gaussian.
-constexpr double kMaleHeightCm = 175, kFemaleHeightCm = 165, kHeightSdCm = 15;
-constexpr double kMaleWeightKg = 75, kFemaleWeightKg = 65, kWeightSdKg = 10;
-
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
-  return s;
-}
 
 // Real windows of a set of subjects, with everything the experiment needs.
 struct WindowSet {
@@ -115,21 +105,13 @@ void normalise_per_subject(Eigen::MatrixXd& features, const std::vector<std::str
 
 std::vector<BodySpec> sample_paper_bodies(int count, std::uint64_t seed) {
   if (count < 1) throw Error("har: need at least one synthetic body, found " + std::to_string(count));
+  // Paper section 3.1 (ptnet/paper.hpp), sexes alternating, through the
+  // project's own Gaussian: the same bodies with every standard library.
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> unit(0.0, 1.0);
   std::vector<BodySpec> out;
-  for (int i = 0; i < count; ++i) {
-    BodySpec b;
-    b.id = "syn" + std::to_string(i + 1);
-    b.sex = i % 2 == 0 ? Sex::female : Sex::male;
-    const bool male = b.sex == Sex::male;
-    const double h = (male ? kMaleHeightCm : kFemaleHeightCm) + kHeightSdCm * unit(rng);
-    const double w = (male ? kMaleWeightKg : kFemaleWeightKg) + kWeightSdKg * unit(rng);
-    b.height_cm = std::round(std::clamp(h, kMinHeightCm, kMaxHeightCm) * 10) / 10;
-    b.weight_kg = std::round(std::clamp(w, kMinWeightKg, kMaxWeightKg) * 10) / 10;
-    b.role = "retargeted";
-    out.push_back(b);
-  }
+  for (int i = 0; i < count; ++i)
+    out.push_back(draw_paper_body(rng, i % 2 == 0 ? Sex::female : Sex::male, "syn" + std::to_string(i + 1),
+                                  "retargeted"));
   return out;
 }
 
@@ -168,79 +150,95 @@ std::pair<std::vector<std::string>, std::vector<std::string>> check_subjects(
   return {train, test};
 }
 
-HarResult validate_har(const Dataset& real, const TransferFn& transfer, const HarOptions& o) {
-  const auto t_begin = std::chrono::steady_clock::now();
-  auto say = [&](const std::string& s) {
-    if (o.progress) o.progress(s);
-  };
-  const std::string& path = real.path();
+namespace {
+
+// ---- the phases of validate_har(), in order
+
+void say(const HarOptions& o, const std::string& line) {
+  if (o.progress) o.progress(line);
+}
+
+void check_options(const TransferFn& transfer, const HarOptions& o) {
   if (o.runs < 1) throw Error("har: runs must be at least 1, found " + std::to_string(o.runs));
   if (o.stride < 1) throw Error("har: stride must be at least 1, found " + std::to_string(o.stride));
   if (!transfer) throw Error("har: no transfer function given");
+}
 
-  HarResult r;
-  r.dataset = path;
-  std::tie(r.train_subjects, r.test_subjects) = check_subjects(real, o);
-  r.runs = o.runs;
-  r.stride = o.stride;
+// The real windows of both subject sets.
+struct RealWindows {
+  WindowSet train, test;
+  std::vector<int> train_sequences;  // indices into Dataset::sequences() of the training subjects
+  int count() const { return train.count() + test.count(); }
+};
 
-  // ---- real windows of both subject sets
+RealWindows read_real_windows(const Dataset& real, const HarOptions& o, HarResult& r) {
   const double fps = real.info().fps;
   const auto& sequences = real.sequences();
-  WindowSet train, test;
-  std::vector<int> train_sequences;
+  RealWindows w;
   for (int pass = 0; pass < 2; ++pass) {
     const auto& subjects = pass == 0 ? r.train_subjects : r.test_subjects;
-    WindowSet& set = pass == 0 ? train : test;
+    WindowSet& set = pass == 0 ? w.train : w.test;
     for (const std::string& subject : subjects) {
       for (int i = 0; i < int(sequences.size()); ++i) {
         if (sequences[i].body_id != subject) continue;
         if (sequences[i].frames < kWindowFrames) continue;
         const PressureSequence seq = real.read(sequences[i].name);
         add_windows(seq, i, sequences[i].category, o.stride, o.input, fps, set);
-        if (pass == 0) train_sequences.push_back(i);
+        if (pass == 0) w.train_sequences.push_back(i);
       }
     }
   }
-  r.train_windows = train.count();
-  r.test_windows = test.count();
-  say("har: " + std::to_string(r.train_windows) + " training windows (subjects " +
-      join(r.train_subjects) + "), " + std::to_string(r.test_windows) + " test windows (subjects " +
-      join(r.test_subjects) + ")");
+  r.train_windows = w.train.count();
+  r.test_windows = w.test.count();
+  say(o, "har: " + std::to_string(r.train_windows) + " training windows (subjects " + join(r.train_subjects) +
+             "), " + std::to_string(r.test_windows) + " test windows (subjects " + join(r.test_subjects) + ")");
+  return w;
+}
 
-  // ---- pseudo labels: standardise + PCA + mean shift on all real windows
-  const int n_all = train.count() + test.count();
+// Pseudo labels: standardise + PCA + mean shift on all real windows, train
+// windows first: [N].
+std::vector<int> pseudo_labels(const Dataset& real, const RealWindows& w, const HarOptions& o, HarResult& r) {
+  const int n_all = w.count();
   const int nf = int(feature_names().size());
   Eigen::MatrixXd features(n_all, nf);
   for (int i = 0; i < n_all; ++i) {
-    const auto& f = i < train.count() ? train.features[i] : test.features[i - train.count()];
+    const auto& f = i < w.train.count() ? w.train.features[i] : w.test.features[i - w.train.count()];
     for (int j = 0; j < nf; ++j) features(i, j) = f[j];
   }
-  normalise_per_subject(features, window_subjects(real, train, test));
+  normalise_per_subject(features, window_subjects(real, w.train, w.test));
   const int k = std::clamp(o.pca_components, 1, nf);
   const Pca pca = Pca::fit(features, k);
-  const Eigen::MatrixXd z = pca.transform(features);
-  const MeanShiftResult ms = mean_shift(z, o.mean_shift);
+  const MeanShiftResult ms = mean_shift(pca.transform(features), o.mean_shift);
   r.pca_components = k;
   r.pca_explained = pca.explained;
   r.bandwidth = ms.bandwidth;
   r.bandwidth_estimated = !(o.mean_shift.bandwidth > 0);
   r.clusters = ms.clusters();
   r.cluster_sizes = ms.sizes;
-  {
-    std::ostringstream s;
-    s << "har: mean shift: " << r.clusters << " clusters, bandwidth " << r.bandwidth
-      << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", PCA " << k << " components ("
-      << int(std::round(100 * pca.explained)) << " % of variance), " << ms.seeds << " seeds";
-    say(s.str());
-  }
+  std::ostringstream s;
+  s << "har: mean shift: " << r.clusters << " clusters, bandwidth " << r.bandwidth
+    << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", PCA " << k << " components ("
+    << int(std::round(100 * pca.explained)) << " % of variance), " << ms.seeds << " seeds";
+  say(o, s.str());
   if (r.clusters < 2)
-    throw Error::in(path, "mean shift found a single cluster (bandwidth " +
-                              std::to_string(r.bandwidth) + "); pass a smaller --bandwidth");
-  std::vector<int> train_labels(ms.labels.begin(), ms.labels.begin() + train.count());
-  std::vector<int> test_labels(ms.labels.begin() + train.count(), ms.labels.end());
+    throw Error::in(real.path(), "mean shift found a single cluster (bandwidth " + std::to_string(r.bandwidth) +
+                                     "); pass a smaller --bandwidth");
+  return ms.labels;
+}
 
-  // Category labels, where the dataset has them.
+// The labels of the training and test windows: pseudo labels, and category
+// indices where every window has a category.
+struct Labels {
+  std::vector<int> train, test;          // pseudo labels
+  std::vector<int> train_cat, test_cat;  // categories (empty: unlabelled data)
+  bool use_categories = false;           // also train and score category classifiers
+};
+
+Labels split_labels(const RealWindows& w, const std::vector<int>& labels, const HarOptions& o, HarResult& r) {
+  const WindowSet &train = w.train, &test = w.test;
+  Labels l;
+  l.train.assign(labels.begin(), labels.begin() + train.count());
+  l.test.assign(labels.begin() + train.count(), labels.end());
   std::set<std::string> category_set(train.category.begin(), train.category.end());
   category_set.insert(test.category.begin(), test.category.end());
   category_set.erase("");
@@ -248,117 +246,146 @@ HarResult validate_har(const Dataset& real, const TransferFn& transfer, const Ha
   auto category_index = [&](const std::string& c) {
     return int(std::lower_bound(r.categories.begin(), r.categories.end(), c) - r.categories.begin());
   };
-  const bool all_labelled =
-      std::none_of(train.category.begin(), train.category.end(), [](auto& c) { return c.empty(); }) &&
-      std::none_of(test.category.begin(), test.category.end(), [](auto& c) { return c.empty(); });
-  const bool use_categories = o.category_labels && all_labelled && r.categories.size() >= 2;
-  std::vector<int> train_cat, test_cat;
-  if (!r.categories.empty() && all_labelled) {
-    r.cluster_vs_category = Eigen::MatrixXi::Zero(r.clusters, int(r.categories.size()));
-    for (int i = 0; i < n_all; ++i) {
-      const std::string& c = i < train.count() ? train.category[i] : test.category[i - train.count()];
-      ++r.cluster_vs_category(ms.labels[i], category_index(c));
-    }
-    long long majority = 0;
-    for (int c = 0; c < r.clusters; ++c) majority += r.cluster_vs_category.row(c).maxCoeff();
-    r.cluster_purity = double(majority) / double(n_all);
-    for (const auto& c : train.category) train_cat.push_back(category_index(c));
-    for (const auto& c : test.category) test_cat.push_back(category_index(c));
+  auto none_empty = [](const std::vector<std::string>& v) {
+    return std::none_of(v.begin(), v.end(), [](const std::string& c) { return c.empty(); });
+  };
+  const bool all_labelled = none_empty(train.category) && none_empty(test.category);
+  l.use_categories = o.category_labels && all_labelled && r.categories.size() >= 2;
+  if (r.categories.empty() || !all_labelled) return l;
+  r.cluster_vs_category = Eigen::MatrixXi::Zero(r.clusters, int(r.categories.size()));
+  for (int i = 0; i < w.count(); ++i) {
+    const std::string& c = i < train.count() ? train.category[i] : test.category[i - train.count()];
+    ++r.cluster_vs_category(labels[i], category_index(c));
   }
+  long long majority = 0;
+  for (int c = 0; c < r.clusters; ++c) majority += r.cluster_vs_category.row(c).maxCoeff();
+  r.cluster_purity = double(majority) / double(w.count());
+  for (const auto& c : train.category) l.train_cat.push_back(category_index(c));
+  for (const auto& c : test.category) l.test_cat.push_back(category_index(c));
+  return l;
+}
 
-  // ---- synthetic windows: train-subject sequences transferred onto new bodies
+// Synthetic windows: the training subjects' sequences transferred onto new
+// bodies, each window with the labels of the real window it came from.
+struct SyntheticWindows {
+  PreparedWindows inputs;
+  std::vector<int> labels, categories;
+};
+
+SyntheticWindows transfer_windows(const Dataset& real, const TransferFn& transfer, const RealWindows& w,
+                                  const Labels& l, const HarOptions& o, HarResult& r) {
   r.synthetic_bodies = o.bodies.empty() ? sample_paper_bodies(o.synthetic_bodies, o.seed) : o.bodies;
-  PreparedWindows synthetic;
-  std::vector<int> synthetic_labels, synthetic_cat;
-  {
-    // Pseudo label of each (sequence, start) of the training windows.
-    std::map<std::pair<int, int>, int> window_index;
-    for (int i = 0; i < train.count(); ++i) window_index[{train.sequence[i], train.start[i]}] = i;
-    int done = 0;
-    for (int si : train_sequences) {
-      const SequenceMeta& meta = sequences[si];
-      const PressureSequence source = real.read(meta.name);
-      const BodySpec& from = real.body(meta.body_id);
-      for (const BodySpec& to : r.synthetic_bodies) {
-        const PressureSequence out = transfer(source, from, to);
-        if (!(out.mat == source.mat) || out.frames() != source.frames())
-          throw Error("har: transfer of " + meta.name + " returned " + std::to_string(out.frames()) +
-                      " frames of " + std::to_string(out.mat.rows) + "x" +
-                      std::to_string(out.mat.cols) + ", expected " +
-                      std::to_string(source.frames()) + " of " + std::to_string(source.mat.rows) +
-                      "x" + std::to_string(source.mat.cols));
-        for (int t : window_starts(out.frames(), o.stride)) {
-          const int w = window_index.at({si, t});
-          prepare_window(out.kpa.data() + std::size_t(t) * out.mat.cells(), kWindowFrames, out.mat,
-                         o.input, synthetic);
-          synthetic_labels.push_back(train_labels[w]);
-          if (!train_cat.empty()) synthetic_cat.push_back(train_cat[w]);
-        }
+  const auto& sequences = real.sequences();
+  std::map<std::pair<int, int>, int> window_index;  // (sequence, start) -> training window
+  for (int i = 0; i < w.train.count(); ++i) window_index[{w.train.sequence[i], w.train.start[i]}] = i;
+  SyntheticWindows syn;
+  int done = 0;
+  for (int si : w.train_sequences) {
+    const SequenceMeta& meta = sequences[si];
+    const PressureSequence source = real.read(meta.name);
+    const BodySpec& from = real.body(meta.body_id);
+    for (const BodySpec& to : r.synthetic_bodies) {
+      const PressureSequence out = transfer(source, from, to);
+      if (!(out.mat == source.mat) || out.frames() != source.frames())
+        throw Error("har: transfer of " + meta.name + " returned " + std::to_string(out.frames()) + " frames of " +
+                    std::to_string(out.mat.rows) + "x" + std::to_string(out.mat.cols) + ", expected " +
+                    std::to_string(source.frames()) + " of " + std::to_string(source.mat.rows) + "x" +
+                    std::to_string(source.mat.cols));
+      for (int t : window_starts(out.frames(), o.stride)) {
+        const int i = window_index.at({si, t});
+        prepare_window(out.kpa.data() + std::size_t(t) * out.mat.cells(), kWindowFrames, out.mat, o.input,
+                       syn.inputs);
+        syn.labels.push_back(l.train[i]);
+        if (!l.train_cat.empty()) syn.categories.push_back(l.train_cat[i]);
       }
-      ++done;
-      say("har: transferred " + std::to_string(done) + "/" + std::to_string(train_sequences.size()) +
-          " training sequences onto " + std::to_string(r.synthetic_bodies.size()) + " bodies");
     }
+    ++done;
+    say(o, "har: transferred " + std::to_string(done) + "/" + std::to_string(w.train_sequences.size()) +
+               " training sequences onto " + std::to_string(r.synthetic_bodies.size()) + " bodies");
   }
-  PreparedWindows both = train.inputs;
-  both.append(synthetic);
-  auto concat = [](std::vector<int> a, const std::vector<int>& b) {
-    a.insert(a.end(), b.begin(), b.end());
-    return a;
-  };
+  return syn;
+}
 
-  // ---- classifiers: source x run (x label kind)
-  struct Source {
-    std::string name;
-    const PreparedWindows* inputs;
-    std::vector<int> labels, categories;
-  };
-  const std::vector<Source> sources = {
-      {"real", &train.inputs, train_labels, train_cat},
-      {"synthetic", &synthetic, synthetic_labels, synthetic_cat},
-      {"real+synthetic", &both, concat(train_labels, synthetic_labels),
-       concat(train_cat, synthetic_cat)}};
+// One training source of the classifiers: its windows and their labels.
+struct TrainingSource {
+  std::string name;
+  const PreparedWindows* inputs;
+  std::vector<int> labels, categories;
+};
+
+std::vector<int> concat(std::vector<int> a, const std::vector<int>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// `o.runs` seeded classifiers trained on one source, scored on the test windows.
+SourceResult score_source(const TrainingSource& s, const WindowSet& test, const Labels& l, const HarOptions& o,
+                          const HarResult& r) {
   const int ncat = int(r.categories.size());
-  for (const Source& s : sources) {
-    SourceResult sr;
-    sr.source = s.name;
-    sr.train_windows = s.inputs->count();
-    sr.confusion = Eigen::MatrixXi::Zero(r.clusters, r.clusters);
-    sr.class_f1_mean.assign(r.clusters, 0.0);
-    if (use_categories) sr.category_confusion = Eigen::MatrixXi::Zero(ncat, ncat);
-    for (int run = 0; run < o.runs; ++run) {
-      ClassifierOptions co = o.classifier;
-      co.seed = o.classifier.seed + std::uint64_t(run);
-      WindowClassifier net(s.inputs->channels, s.inputs->rows, s.inputs->cols, r.clusters, co);
-      net.train(*s.inputs, s.labels);
-      const ClassificationReport rep =
-          classification_report(test_labels, net.predict(test.inputs), r.clusters);
-      sr.macro_f1.push_back(rep.macro_f1);
-      sr.accuracy.push_back(rep.accuracy);
-      sr.confusion += rep.confusion;
-      for (int c = 0; c < r.clusters; ++c) sr.class_f1_mean[c] += rep.f1[c] / o.runs;
-      std::ostringstream line;
-      line.precision(3);
-      line << std::fixed << "har: [" << s.name << " run " << run + 1 << "/" << o.runs
-           << "] macro F1 " << rep.macro_f1 << " accuracy " << rep.accuracy;
-      if (use_categories) {
-        WindowClassifier cat(s.inputs->channels, s.inputs->rows, s.inputs->cols, ncat, co);
-        cat.train(*s.inputs, s.categories);
-        const ClassificationReport cr =
-            classification_report(test_cat, cat.predict(test.inputs), ncat);
-        sr.category_macro_f1.push_back(cr.macro_f1);
-        sr.category_confusion += cr.confusion;
-        line << " category macro F1 " << cr.macro_f1;
-      }
-      say(line.str());
+  SourceResult sr;
+  sr.source = s.name;
+  sr.train_windows = s.inputs->count();
+  sr.confusion = Eigen::MatrixXi::Zero(r.clusters, r.clusters);
+  sr.class_f1_mean.assign(r.clusters, 0.0);
+  if (l.use_categories) sr.category_confusion = Eigen::MatrixXi::Zero(ncat, ncat);
+  for (int run = 0; run < o.runs; ++run) {
+    ClassifierOptions co = o.classifier;
+    co.seed = o.classifier.seed + std::uint64_t(run);
+    WindowClassifier net(s.inputs->channels, s.inputs->rows, s.inputs->cols, r.clusters, co);
+    net.train(*s.inputs, s.labels);
+    const ClassificationReport rep = classification_report(l.test, net.predict(test.inputs), r.clusters);
+    sr.macro_f1.push_back(rep.macro_f1);
+    sr.accuracy.push_back(rep.accuracy);
+    sr.confusion += rep.confusion;
+    for (int c = 0; c < r.clusters; ++c) sr.class_f1_mean[c] += rep.f1[c] / o.runs;
+    std::ostringstream line;
+    line.precision(3);
+    line << std::fixed << "har: [" << s.name << " run " << run + 1 << "/" << o.runs << "] macro F1 "
+         << rep.macro_f1 << " accuracy " << rep.accuracy;
+    if (l.use_categories) {
+      WindowClassifier cat(s.inputs->channels, s.inputs->rows, s.inputs->cols, ncat, co);
+      cat.train(*s.inputs, s.categories);
+      const ClassificationReport cr = classification_report(l.test_cat, cat.predict(test.inputs), ncat);
+      sr.category_macro_f1.push_back(cr.macro_f1);
+      sr.category_confusion += cr.confusion;
+      line << " category macro F1 " << cr.macro_f1;
     }
-    sr.macro_f1_mean = mean_of(sr.macro_f1);
-    sr.macro_f1_std = sd_of(sr.macro_f1);
-    sr.accuracy_mean = mean_of(sr.accuracy);
-    sr.category_macro_f1_mean = mean_of(sr.category_macro_f1);
-    sr.category_macro_f1_std = sd_of(sr.category_macro_f1);
-    r.sources.push_back(std::move(sr));
+    say(o, line.str());
   }
+  sr.macro_f1_mean = mean_of(sr.macro_f1);
+  sr.macro_f1_std = sd_of(sr.macro_f1);
+  sr.accuracy_mean = mean_of(sr.accuracy);
+  sr.category_macro_f1_mean = mean_of(sr.category_macro_f1);
+  sr.category_macro_f1_std = sd_of(sr.category_macro_f1);
+  return sr;
+}
+
+// Classifiers per training source: real, synthetic, real + synthetic.
+void score_sources(const RealWindows& w, const Labels& l, const SyntheticWindows& syn, const HarOptions& o,
+                   HarResult& r) {
+  PreparedWindows both = w.train.inputs;
+  both.append(syn.inputs);
+  const std::vector<TrainingSource> sources = {
+      {"real", &w.train.inputs, l.train, l.train_cat},
+      {"synthetic", &syn.inputs, syn.labels, syn.categories},
+      {"real+synthetic", &both, concat(l.train, syn.labels), concat(l.train_cat, syn.categories)}};
+  for (const TrainingSource& s : sources) r.sources.push_back(score_source(s, w.test, l, o, r));
+}
+
+}  // namespace
+
+HarResult validate_har(const Dataset& real, const TransferFn& transfer, const HarOptions& o) {
+  const auto t_begin = std::chrono::steady_clock::now();
+  check_options(transfer, o);
+  HarResult r;
+  r.dataset = real.path();
+  std::tie(r.train_subjects, r.test_subjects) = check_subjects(real, o);
+  r.runs = o.runs;
+  r.stride = o.stride;
+  const RealWindows windows = read_real_windows(real, o, r);
+  const Labels labels = split_labels(windows, pseudo_labels(real, windows, o, r), o, r);
+  const SyntheticWindows synthetic = transfer_windows(real, transfer, windows, labels, o, r);
+  score_sources(windows, labels, synthetic, o, r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return r;
 }
