@@ -17,7 +17,7 @@ namespace {
 
 struct EvaluateCli {
   std::string model, data, out = "report";
-  double threshold_kpa = 0.5;
+  double threshold_kpa = kContactKpa;
   int stride = 5, threads = 0;
   bool force = false, raw = false;
 };

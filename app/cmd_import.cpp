@@ -9,28 +9,18 @@
 #include "command.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
+#include "ptnet/strings.hpp"
 
 namespace {
 
-struct ImportCommand {
+struct ImportCli {
   std::string manifest, dataset, subjects, out;
   ptnet::har::ImportOptions o;
   bool force = false;
 };
 
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
-    if (b != std::string::npos) out.push_back(item.substr(b, e - b + 1));
-  }
-  return out;
-}
-
 void setup(CLI::App& app) {
-  auto c = std::make_shared<ImportCommand>();
+  auto c = std::make_shared<ImportCli>();
   CLI::App* s = app.add_subcommand(
       "import",
       "Import real pressure-mat recordings into a dataset file: a manifest CSV "
@@ -56,7 +46,7 @@ void setup(CLI::App& app) {
   s->callback([c] {
     if (!c->dataset.empty()) {
       if (c->subjects.empty()) throw ptnet::Error("--dataset needs --subjects (the training subjects)");
-      ptnet::har::write_finetune_set(c->dataset, split_list(c->subjects), c->out, c->force);
+      ptnet::har::write_finetune_set(c->dataset, ptnet::split_list(c->subjects), c->out, c->force);
     } else if (!c->manifest.empty()) {
       ptnet::har::import_recordings(c->manifest, c->out, c->o, c->force);
     } else {

@@ -15,11 +15,12 @@
 #include "ptnet/error.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/motion.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet::cli {
 namespace {
 
-struct InfoOptions {
+struct InfoCli {
   std::string file;
   bool json = false;
   std::string units = "auto";
@@ -36,7 +37,7 @@ Units units_of(const Bvh& bvh, Units asked, UpAxis up) {
   return Units::automatic;
 }
 
-nlohmann::ordered_json describe_bvh(const InfoOptions& o) {
+nlohmann::ordered_json describe_bvh(const InfoCli& o) {
   const Bvh bvh = read_bvh(o.file);
   MotionOptions mo;
   mo.units = parse_units(o.units);
@@ -73,9 +74,8 @@ nlohmann::ordered_json describe_bvh(const InfoOptions& o) {
   return j;
 }
 
-nlohmann::ordered_json describe(const InfoOptions& o) {
-  std::string ext = std::filesystem::path(o.file).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+nlohmann::ordered_json describe(const InfoCli& o) {
+  const std::string ext = lower(std::filesystem::path(o.file).extension().string());
   if (ext == ".bvh") return describe_bvh(o);
   // New file types: one branch here, one describe_<type>() above.
   throw Error::in(o.file, "unsupported file type '" + (ext.empty() ? std::string("(none)") : ext) +
@@ -107,7 +107,7 @@ void print_text(const nlohmann::ordered_json& j) {
 }
 
 void setup(CLI::App& app) {
-  auto opt = std::make_shared<InfoOptions>();
+  auto opt = std::make_shared<InfoCli>();
   CLI::App* cmd =
       app.add_subcommand("info",
                          "Print what a motion file holds (BVH: joints, frames, fps, units, "

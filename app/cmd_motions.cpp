@@ -21,7 +21,7 @@
 namespace ptnet::cli {
 namespace {
 
-struct MotionsOptions {
+struct MotionsCli {
   // One clip.
   std::string category;
   int performer = 1;
@@ -50,7 +50,7 @@ std::vector<Category> parse_categories(const std::string& list) {
   return out;
 }
 
-GenerateOptions generate_options(const MotionsOptions& o, Category c, int performer, int take) {
+GenerateOptions generate_options(const MotionsCli& o, Category c, int performer, int take) {
   GenerateOptions g;
   g.category = c;
   g.performer = performer;
@@ -66,7 +66,7 @@ void progress(const std::string& line) {
   if (!globals().quiet) std::cerr << line << "\n";
 }
 
-void run_one(const MotionsOptions& o) {
+void run_one(const MotionsCli& o) {
   const Category c = parse_category(o.category);
   check_output_path(o.out, o.force);
   const Motion m = generate_motion(generate_options(o, c, o.performer, o.take));
@@ -77,7 +77,7 @@ void run_one(const MotionsOptions& o) {
            height + " cm), take " + std::to_string(o.take) + ", " + std::to_string(m.size()) + " frames");
 }
 
-void run_set(const MotionsOptions& o) {
+void run_set(const MotionsCli& o) {
   namespace fs = std::filesystem;
   const std::vector<Category> categories = parse_categories(o.categories);
   std::error_code ec;
@@ -92,7 +92,7 @@ void run_set(const MotionsOptions& o) {
   for (int p = 1; p <= o.performers; ++p)
     for (Category c : categories)
       for (int t = 1; t <= o.takes; ++t)
-        clips.push_back({"p" + std::to_string(p) + "_" + category_name(c) + "_t" + std::to_string(t) + ".bvh", c, p, t});
+        clips.push_back({ptnet::motion_id(p, c, t) + ".bvh", c, p, t});
   // Refuse before writing anything.
   const std::string manifest = (fs::path(o.out_dir) / "clips.csv").string();
   check_output_path(manifest, o.force);
@@ -113,7 +113,7 @@ void run_set(const MotionsOptions& o) {
 }
 
 void setup(CLI::App& app) {
-  auto opt = std::make_shared<MotionsOptions>();
+  auto opt = std::make_shared<MotionsCli>();
   CLI::App* cmd = app.add_subcommand(
       "motions", "Generate procedural motion clips (walking, rom, freestyle, acting) as BVH on the canonical skeleton");
   auto* category = cmd->add_option("--category", opt->category, "One clip: walking|rom|freestyle|acting")

@@ -8,7 +8,7 @@
 
 namespace {
 
-struct RenderOptions {
+struct RenderCli {
   std::string dataset;
   std::vector<std::string> sequences;
   std::string out;
@@ -20,7 +20,7 @@ struct RenderOptions {
   bool force = false;
 };
 
-void run(const RenderOptions& o) {
+void run(const RenderCli& o) {
   ptnet::Dataset d = ptnet::Dataset::open(o.dataset);
   ptnet::FigureOptions fig;
   fig.cell_px = o.cell_px;
@@ -33,7 +33,7 @@ void run(const RenderOptions& o) {
 }
 
 void setup(CLI::App& app) {
-  auto o = std::make_shared<RenderOptions>();
+  auto o = std::make_shared<RenderCli>();
   auto* cmd = app.add_subcommand(
       "render",
       "Draw pressure heatmaps of dataset sequences: a PNG strip of frames (one row per\n"

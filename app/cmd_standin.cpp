@@ -10,14 +10,14 @@
 
 namespace {
 
-struct StandinCommand {
+struct StandinCli {
   std::string out;
   bool force = false;
   ptnet::har::StandinOptions o;
 };
 
 void setup(CLI::App& app) {
-  auto c = std::make_shared<StandinCommand>();
+  auto c = std::make_shared<StandinCli>();
   CLI::App* s = app.add_subcommand(
       "standin",
       "Write the STAND-IN for real recordings (simulated, not real data): N subjects, each its "

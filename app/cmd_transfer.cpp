@@ -6,13 +6,14 @@
 //   ptnet transfer --model model/ --in rec.npy --source female,165,60
 //                  --target male,185,95 --out out.npy
 #include <iostream>
-#include <sstream>
 
 #include "command.hpp"
+#include "ptnet/body_spec.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/transfer.hpp"
 
 namespace ptnet::cli {
@@ -23,36 +24,6 @@ struct TransferCli {
   int stride = 5, threads = 0;
   bool force = false, raw = false;
 };
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// "female,165,60" (sex female|male|f|m|0|1, height cm, weight kg).
-BodySpec parse_body(const std::string& text, const std::string& option) {
-  std::stringstream ss(text);
-  std::string sex, h, w, extra;
-  std::getline(ss, sex, ',');
-  std::getline(ss, h, ',');
-  std::getline(ss, w, ',');
-  const bool more = static_cast<bool>(std::getline(ss, extra, ','));
-  BodySpec b;
-  b.id = option.substr(2);
-  if (sex == "female" || sex == "f" || sex == "0") b.sex = Sex::female;
-  else if (sex == "male" || sex == "m" || sex == "1") b.sex = Sex::male;
-  else throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found " + escaped(text));
-  try {
-    std::size_t used_h = 0, used_w = 0;
-    b.height_cm = std::stod(h, &used_h);
-    b.weight_kg = std::stod(w, &used_w);
-    if (used_h != h.size() || used_w != w.size() || more) throw std::invalid_argument("trailing");
-  } catch (const std::exception&) {
-    throw Error(option + ": expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found " + escaped(text));
-  }
-  return b;
-}
-
-const char* sex_name_text(const BodySpec& b) { return b.sex == Sex::male ? "male" : "female"; }
 
 void run(const TransferCli& c) {
   const bool npy_out = ends_with(c.out, ".npy");
@@ -65,7 +36,7 @@ void run(const TransferCli& c) {
   to.threads = c.threads;
   to.device = c.device;
   Transfer net(c.model, to);
-  const BodySpec target = parse_body(c.target, "--target");
+  const BodySpec target = parse_body_attributes(c.target, "--target");
   check_body_range(target, "target body");
 
   PressureSequence src;
@@ -78,7 +49,7 @@ void run(const TransferCli& c) {
     if (c.source.empty()) throw Error("--source is required with a .npy input (e.g. --source female,165,60)");
     if (!c.sequence.empty()) throw Error("--sequence applies to a dataset input, not " + c.in);
     src = read_npy_sequence(c.in, net.model().mat, net.model().fps);
-    source = parse_body(c.source, "--source");
+    source = parse_body_attributes(c.source, "--source");
     meta.motion_id = "npy";
   } else {
     Dataset d = Dataset::open(c.in);
@@ -87,13 +58,13 @@ void run(const TransferCli& c) {
     src = d.read(c.sequence);
     info.mat = d.info().mat;
     info.fps = d.info().fps;
-    source = c.source.empty() ? d.body(meta.body_id) : parse_body(c.source, "--source");
+    source = c.source.empty() ? d.body(meta.body_id) : parse_body_attributes(c.source, "--source");
   }
   check_body_range(source, "source body");
   check_output_path(c.out, c.force);  // again, now that the input is known: never the input itself
   if (!globals().quiet)
-    std::cerr << "transfer: " << src.frames() << " frames, " << sex_name_text(source) << " " << source.height_cm
-              << " cm " << source.weight_kg << " kg -> " << sex_name_text(target) << " " << target.height_cm
+    std::cerr << "transfer: " << src.frames() << " frames, " << sex_name(source.sex) << " " << source.height_cm
+              << " cm " << source.weight_kg << " kg -> " << sex_name(target.sex) << " " << target.height_cm
               << " cm " << target.weight_kg << " kg\n";
   PressureSequence out = net.run(src, source, target);
   if (npy_out) {

@@ -13,11 +13,12 @@
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model_config.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/transfer.hpp"
 
 namespace {
 
-struct ValidateHarOptions {
+struct ValidateHarCli {
   std::string real, model, baseline, bodies, out = "har";
   std::string train_subjects = "1,2,3", test_subjects = "4,5";
   int runs = 10;
@@ -34,20 +35,13 @@ struct ValidateHarOptions {
   bool force = false;
 };
 
-std::vector<std::string> split_list(const std::string& text, const std::string& option) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
-    if (b == std::string::npos) continue;
-    out.push_back(item.substr(b, e - b + 1));
-  }
+std::vector<std::string> subject_list(const std::string& text, const std::string& option) {
+  std::vector<std::string> out = ptnet::split_list(text);
   if (out.empty()) throw ptnet::Error(option + ": no subjects given");
   return out;
 }
 
-void write_outputs(const ValidateHarOptions& o, const ptnet::har::HarResult& r,
+void write_outputs(const ValidateHarCli& o, const ptnet::har::HarResult& r,
                    const std::string& json_path, const std::string& png_path) {
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
@@ -61,12 +55,12 @@ void write_outputs(const ValidateHarOptions& o, const ptnet::har::HarResult& r,
   std::cout << "open " << page << " in a browser: the report on one page\n";
 }
 
-void run(const ValidateHarOptions& o) {
+void run(const ValidateHarCli& o) {
   namespace fs = std::filesystem;
   const bool quiet = ptnet::cli::globals().quiet;
   ptnet::har::HarOptions h;
-  h.train_subjects = split_list(o.train_subjects, "--train-subjects");
-  h.test_subjects = split_list(o.test_subjects, "--test-subjects");
+  h.train_subjects = subject_list(o.train_subjects, "--train-subjects");
+  h.test_subjects = subject_list(o.test_subjects, "--test-subjects");
   h.runs = o.runs;
   h.stride = o.stride;
   h.pca_components = o.pca;
@@ -148,7 +142,7 @@ void run(const ValidateHarOptions& o) {
 }
 
 void setup(CLI::App& app) {
-  auto o = std::make_shared<ValidateHarOptions>();
+  auto o = std::make_shared<ValidateHarCli>();
   CLI::App* c = app.add_subcommand(
       "validate-har",
       "HAR validation (paper Table 3): mean-shift pseudo labels on real windows, a CNN trained on "
