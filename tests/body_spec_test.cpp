@@ -1,8 +1,10 @@
 // Body attributes and the bodies CSV (issue 3).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <unistd.h>
 
 #include "ptnet/body.hpp"
@@ -46,6 +48,40 @@ TEST(BodySpec, ImpossibleAttributesAreErrors) {
   EXPECT_EQ(b.sex, Sex::female);
   EXPECT_DOUBLE_EQ(b.height_cm, 165);
   EXPECT_THROW(parse_body_attributes("female,165"), Error);
+}
+
+TEST(BodySpec, OneParserForEveryCaseOfTheSexWord) {
+  for (const char* text : {"Male,185,95", "MALE,185,95", " m , 185 , 95", "1,185,95"}) {
+    const BodySpec b = parse_body_attributes(text, "--target");
+    EXPECT_EQ(b.sex, Sex::male) << text;
+    EXPECT_DOUBLE_EQ(b.height_cm, 185) << text;
+    EXPECT_DOUBLE_EQ(b.weight_kg, 95) << text;
+  }
+  EXPECT_EQ(parse_body_attributes("Female,160,55").sex, Sex::female);
+  for (const char* bad : {"giant,300", "male,185", "male,185,95,1", "male,1.8m,95", "male,,95"}) {
+    try {
+      parse_body_attributes(bad, "--target");
+      ADD_FAILURE() << bad;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("--target: expected SEX,HEIGHT_CM,WEIGHT_KG like female,165,60, found '") + bad + "'");
+    }
+  }
+  // The range is the one validator's, in every place that checks it.
+  EXPECT_EQ(body_range_problem(BodySpec{"b", Sex::male, 300, 80}), "height_cm 300 outside 100-230");
+  EXPECT_EQ(body_range_problem(BodySpec{"b", Sex::male, 180, 5}), "weight_kg 5 outside 20-250");
+  EXPECT_EQ(body_range_problem(BodySpec{"b", Sex::male, 180, 80}), "");
+}
+
+TEST(BodySpec, PaperBodiesComeFromTheProjectsOwnGaussian) {
+  // Box-Muller on raw 53-bit uniforms: these numbers hold with every standard library.
+  std::mt19937_64 rng(7);
+  const BodySpec b = draw_paper_body(rng, Sex::male, "m", "retargeted");
+  std::mt19937_64 again(7);
+  const double h = 175 + 15 * standard_normal(again);
+  const double w = 75 + 10 * standard_normal(again);
+  EXPECT_DOUBLE_EQ(b.height_cm, std::round(h * 10) / 10);
+  EXPECT_DOUBLE_EQ(b.weight_kg, std::round(w * 10) / 10);
 }
 
 TEST(BodySpec, HeavierBodyAtTheSameHeightIsThicker) {

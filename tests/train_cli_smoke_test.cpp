@@ -73,6 +73,12 @@ TEST_F(CliSmoke, TrainThenTransferToNpyAndH5) {
   PressureSequence expect = api.run(d.read("m2__orig"), d.body("orig"), BodySpec{"t", Sex::male, 185, 95});
   EXPECT_EQ(a.data, expect.kpa);
 
+  // The sex word in any case, as the library's parser takes it.
+  const std::string out_case = (dir_ / "out_case.npy").string();
+  r = run("transfer --model " + model + " --in " + data() + " --sequence m2__orig --target Male,185,95 --out " + out_case);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_npy(out_case).data, expect.kpa);
+
   // .npy in, .h5 out: a one-sequence dataset on the target body.
   const std::string out_h5 = (dir_ / "out.h5").string();
   r = run("transfer --model " + model + " --in " + out_npy + " --source male,185,95 --target female,160,55 --out " + out_h5);

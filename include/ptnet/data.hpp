@@ -34,7 +34,7 @@ inline constexpr int kDatasetVersion = 1;
 
 struct DatasetInfo {
   MatSpec mat;
-  double fps = 30;
+  double fps = kFps;
   std::string generator;    // "ptnet 0.1.0 simulate"
   std::string config_json = "{}";  // options that produced the file
 };

@@ -34,7 +34,7 @@
 namespace ptnet {
 
 struct MetricOptions {
-  double threshold_kpa = 0.5;  // binarisation threshold for binary R^2 and IoU
+  double threshold_kpa = kContactKpa;  // binarisation threshold for binary R^2 and IoU
 };
 
 struct SequenceMetrics {
@@ -163,7 +163,7 @@ struct ReportOptions {
   std::string out_dir = "report";  // created if missing
   bool force = false;              // overwrite existing report files
   int frames_per_category = 5;     // frames in each qualitative_<category>.png
-  double threshold_kpa = 0.5;      // recorded in metrics.json
+  double threshold_kpa = kContactKpa;  // recorded in metrics.json
   std::string model_dir;           // the model's history.csv and config.json on the page ("": none)
 };
 

@@ -37,8 +37,7 @@ class Dataset;
 
 namespace ptnet::har {
 
-inline constexpr int kWindowFrames = 30;         // frames per window (the paper's)
-inline constexpr double kContactKpa = 0.5;       // a cell above this is in contact
+// kWindowFrames and kContactKpa: ptnet/paper.hpp.
 inline constexpr int kCentredGridRows = 8;       // centred occupancy grid, blocks along the mat
 inline constexpr int kCentredGridCols = 4;       // ... and across
 inline constexpr int kCentredBlockRows = 5;      // cells per block along (5 x 2 cm = 10 cm)
@@ -352,7 +351,7 @@ std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& op
 // manifest line.
 struct ImportOptions {
   MatSpec mat;      // the recordings' mat
-  double fps = 30;  // their frame rate
+  double fps = kFps;  // their frame rate
 };
 void import_recordings(const std::string& manifest, const std::string& out,
                        const ImportOptions& options, bool force);

@@ -23,18 +23,17 @@
 #include <string>
 
 #include "ptnet/body_spec.hpp"
+#include "ptnet/paper.hpp"
 #include "ptnet/pressure.hpp"
 
 namespace ptnet {
 
-inline constexpr int kWindow = 30;        // frames per window (input channels)
 inline constexpr int kAttributes = 3;     // sex, height, weight
 inline constexpr int kHidden = 128;       // width of the FC layer after the encoder's convolutions
 inline constexpr int kLatent = 128;       // width of the latent after the source attributes
 inline constexpr int kPoolLevels = 3;     // encoder blocks (each halves rows and cols, rounding up)
 inline constexpr std::array<int, 3> kPaperChannels{64, 128, 256};  // conv widths, blocks 1-3
 inline constexpr std::array<int, 3> kFastChannels{16, 32, 64};     // conv widths of the fast preset
-inline constexpr double kContactKpa = 0.5;  // a cell above this is in contact (the paper's binary R^2)
 inline constexpr const char* kModelFormat = "ptnet-model";
 inline constexpr int kModelVersion = 1;
 inline constexpr std::uint64_t kMaxConfigBytes = std::uint64_t(16) << 20;  // config.json: 16 MiB
@@ -69,7 +68,7 @@ const char* arch_name(Arch arch);
 struct ModelConfig {
   Arch arch = Arch::faithful;
   Align align = Align::none;
-  int window = kWindow;                    // frames per window = input/output channels
+  int window = kWindowFrames;                  // frames per window = input/output channels
   int rows = 80;                           // mat rows (H)
   int cols = 28;                           // mat cols (W)
   std::array<int, 3> channels = kPaperChannels;  // conv widths of encoder blocks 1-3
@@ -141,9 +140,5 @@ nlohmann::json to_json(const ModelDir& dir);
 ModelDir read_model_dir(const std::string& dir);
 // The same on config.json's text; `path` names it, `dir` is the folder.
 ModelDir parse_model_config(const std::string& text, const std::string& path, const std::string& dir);
-
-// Throws Error if a body's attributes are outside the plausible range
-// (kMinHeightCm..kMaxHeightCm, kMinWeightKg..kMaxWeightKg); `what` names it.
-void check_body_range(const BodySpec& body, const std::string& what);
 
 }  // namespace ptnet

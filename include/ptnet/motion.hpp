@@ -21,6 +21,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ptnet/paper.hpp"
+
 namespace ptnet {
 
 // ---------------------------------------------------------------- BVH files
@@ -102,7 +104,7 @@ using Pose = std::array<Eigen::Vector3d, kJointCount>;  // world positions, m
 
 struct Motion {
   std::string name;
-  double fps = 30;
+  double fps = kFps;
   std::vector<Pose> frames;  // [F]
   int size() const { return int(frames.size()); }
 };
@@ -112,7 +114,7 @@ struct MotionOptions {
   double metres_per_unit = 0;  // > 0 overrides `units` (e.g. from clips.csv)
   UpAxis up = UpAxis::y;
   bool keep_tpose = false;     // a leading T-pose frame is dropped by default
-  double fps = 30;             // resample to this rate; <= 0 keeps the file's
+  double fps = kFps;           // resample to this rate; <= 0 keeps the file's
 };
 
 // True if frame `f` is a T-pose: arms out horizontally, legs straight.
@@ -173,13 +175,16 @@ inline constexpr std::array<Category, 4> kCategories{Category::walking, Category
                                                      Category::freestyle, Category::acting};
 Category parse_category(const std::string& text);  // throws Error
 const char* category_name(Category category);
+// The motion id of a performer's take of a category: "p3_walking_t2" (the
+// procedural motions, their BVH files and the datasets' motion_id).
+std::string motion_id(int performer, Category category, int take);
 
 struct GenerateOptions {
   Category category = Category::walking;
   int performer = 1;      // 1.. : per-performer style (seeded by this)
   int take = 1;           // 1.. : per-take variation
   double seconds = 10;
-  double fps = 30;
+  double fps = kFps;
   double height_cm = 0;   // 0: the performer's own height
   std::uint64_t seed = 0; // mixed with performer and take
 };

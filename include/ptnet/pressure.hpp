@@ -15,12 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "ptnet/paper.hpp"
+
 namespace ptnet {
 
 struct MatSpec {
-  int rows = 80;          // cells along the long (walking) axis
-  int cols = 28;          // cells across
-  double pitch_m = 0.02;  // cell size (m)
+  int rows = kMatRows;          // cells along the long (walking) axis
+  int cols = kMatCols;          // cells across
+  double pitch_m = kMatPitchM;  // cell size (m)
   int cells() const { return rows * cols; }
   double cell_area_m2() const { return pitch_m * pitch_m; }
   bool operator==(const MatSpec& o) const {
@@ -30,7 +32,7 @@ struct MatSpec {
 
 struct PressureSequence {
   MatSpec mat;
-  double fps = 30;
+  double fps = kFps;
   std::vector<float> kpa;  // [T, rows, cols], kPa, row-major
 
   PressureSequence() = default;

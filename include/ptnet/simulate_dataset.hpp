@@ -99,7 +99,7 @@ Motion load_clip(const ClipSource& clip, double fps);
 
 struct SimulateDatasetOptions {
   SimOptions sim;                 // mat, placement, sensor; sim.seed is replaced per sequence
-  double fps = 30;                // motions are resampled to this rate
+  double fps = kFps;              // motions are resampled to this rate
   std::uint64_t seed = 0;         // run seed: sequence_seed(seed, name) per sequence
   int threads = 0;                // 0: hardware concurrency
   int chunk_jobs = 0;             // jobs per chunk; 0: 8 x threads (at least 16)

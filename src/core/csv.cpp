@@ -7,26 +7,15 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
-
-std::string trim(std::string_view s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
-  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
-  return std::string(s.substr(b, e - b));
-}
 
 // What follows position `at` on its line, for a message.
 std::string rest_of_line(std::string_view text, std::size_t at) {
   const std::size_t end = text.find_first_of("\r\n", at);
   return escaped(text.substr(at, std::min<std::size_t>(end == std::string_view::npos ? text.size() - at : end - at, 20)));
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 }  // namespace

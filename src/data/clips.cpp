@@ -12,16 +12,12 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/simulate_dataset.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return s;
-}
 
 bool is_bvh(const fs::path& p) { return lower(p.extension().string()) == ".bvh"; }
 
@@ -200,7 +196,7 @@ std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds
         c.procedural.seconds = seconds;
         c.procedural.fps = fps;
         c.procedural.seed = seed;
-        c.meta.motion_id = "p" + std::to_string(p) + "_" + category_name(cat) + "_t" + std::to_string(take);
+        c.meta.motion_id = motion_id(p, cat, take);
         c.meta.performer = "P" + std::to_string(p);
         c.meta.category = category_name(cat);
         c.meta.take = take;

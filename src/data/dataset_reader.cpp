@@ -164,14 +164,12 @@ void Dataset::Impl::read_bodies() {
     if (ids[i].empty()) throw Error::in(path, "/bodies row " + std::to_string(i) + ": empty id");
     if (sex[i] != 0 && sex[i] != 1)
       throw Error::in(path, where + ": sex " + number_text(sex[i]) + ", expected 0 (female) or 1 (male)");
-    if (!(height[i] >= kMinHeightCm && height[i] <= kMaxHeightCm))
-      throw Error::in(path, where + ": height_cm " + number_text(height[i]) + " outside 100-230");
-    if (!(weight[i] >= kMinWeightKg && weight[i] <= kMaxWeightKg))
-      throw Error::in(path, where + ": weight_kg " + number_text(weight[i]) + " outside 20-250");
+    const BodySpec b{ids[i], sex[i] == 1 ? Sex::male : Sex::female, height[i], weight[i], roles[i]};
+    const std::string problem = body_range_problem(b);
+    if (!problem.empty()) throw Error::in(path, where + ": " + problem);
     if (!body_index.emplace(ids[i], bodies.size()).second)
       throw Error::in(path, where + ": id appears twice");
-    bodies.push_back(BodySpec{ids[i], sex[i] == 1 ? Sex::male : Sex::female, height[i], weight[i],
-                              roles[i]});
+    bodies.push_back(b);
   }
 }
 

@@ -21,12 +21,8 @@ constexpr int kDeflateLevel = 4;    // zlib level: ~all of level 9's ratio at a 
 void check_body(const std::string& file, const BodySpec& b) {
   auto where = "body '" + b.id + "'";
   if (b.id.empty()) throw Error::in(file, "a body has an empty id");
-  if (b.sex != Sex::female && b.sex != Sex::male)
-    throw Error::in(file, where + ": sex must be female (0) or male (1)");
-  if (!(b.height_cm >= kMinHeightCm && b.height_cm <= kMaxHeightCm))
-    throw Error::in(file, where + ": height_cm " + number_text(b.height_cm) + " outside 100-230");
-  if (!(b.weight_kg >= kMinWeightKg && b.weight_kg <= kMaxWeightKg))
-    throw Error::in(file, where + ": weight_kg " + number_text(b.weight_kg) + " outside 20-250");
+  const std::string problem = body_range_problem(b);
+  if (!problem.empty()) throw Error::in(file, where + ": " + problem);
 }
 
 // /bodies: a packed compound of fixed-length UTF-8 strings and numbers, so

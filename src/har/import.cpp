@@ -15,33 +15,10 @@
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/npy.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet::har {
 namespace {
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
-  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string item;
-  while (std::getline(ss, item, ',')) out.push_back(trim(item));
-  if (!line.empty() && line.back() == ',') out.push_back("");
-  return out;
-}
-
-double number(const std::string& text, const std::string& file, long line, const std::string& what) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  throw Error::at(file, line, what, escaped(text));
-}
 
 // [T, rows, cols] kPa from a CSV of one frame per line.
 PressureSequence read_csv_frames(const std::string& path, const MatSpec& mat, double fps) {
@@ -53,12 +30,16 @@ PressureSequence read_csv_frames(const std::string& path, const MatSpec& mat, do
   while (std::getline(in, text)) {
     ++line;
     if (trim(text).empty()) continue;
-    const auto fields = split(text);
+    const auto fields = split(text, ',');
     if (int(fields.size()) != mat.cells())
       throw Error::at(path, line, std::to_string(mat.cells()) + " values (" + std::to_string(mat.rows) +
                                       " x " + std::to_string(mat.cols) + ")",
                       std::to_string(fields.size()));
-    for (const auto& f : fields) values.push_back(float(number(f, path, line, "a number")));
+    for (const auto& f : fields) {
+      double v = 0;
+      if (!parse_number(f, v)) throw Error::at(path, line, "a number", escaped(f));
+      values.push_back(float(v));
+    }
     ++frames;
   }
   if (frames == 0) throw Error::in(path, "no frames");
@@ -88,20 +69,8 @@ void import_recordings(const std::string& manifest, const std::string& out,
   for (const CsvRow& row : t.rows) {
     const long line = row.line;
     auto f = [&](int c) -> const std::string& { return CsvTable::field(row, c); };
-    BodySpec b;
-    b.id = f(c_subject);
-    if (b.id.empty()) throw Error::at(manifest, line, "a subject id", "an empty field");
-    try {
-      b.sex = parse_sex(f(c_sex));
-    } catch (const Error&) {
-      throw Error::at(manifest, line, "sex female or male", escaped(f(c_sex)));
-    }
-    b.height_cm = number(f(c_height), manifest, line, "height_cm");
-    b.weight_kg = number(f(c_weight), manifest, line, "weight_kg");
-    if (b.height_cm < kMinHeightCm || b.height_cm > kMaxHeightCm)
-      throw Error::at(manifest, line, "height_cm in 100-230", number_text(b.height_cm));
-    if (b.weight_kg < kMinWeightKg || b.weight_kg > kMaxWeightKg)
-      throw Error::at(manifest, line, "weight_kg in 20-250", number_text(b.weight_kg));
+    if (f(c_subject).empty()) throw Error::at(manifest, line, "a subject id", "an empty field");
+    BodySpec b = parse_body_fields(manifest, line, f(c_subject), f(c_sex), f(c_height), f(c_weight));
     b.role = "original";
     auto it = body_of.find(b.id);
     if (it == body_of.end()) {

@@ -83,8 +83,7 @@ StandinPlan procedural_plan(const StandinOptions& o) {
         g.seed = o.seed;
         p.motions.push_back(generate_motion(g));
         SequenceMeta m;
-        m.motion_id = "standin_p" + std::to_string(g.performer) + "_" + category_name(c) + "_t" +
-                      std::to_string(take);
+        m.motion_id = "standin_" + motion_id(g.performer, c, take);
         m.body_id = p.bodies[s].id;
         m.name = m.motion_id + "__" + m.body_id;
         m.performer = "P" + std::to_string(g.performer);

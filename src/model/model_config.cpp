@@ -326,19 +326,4 @@ void record_digest(ModelDir& dir, const std::string& file, const std::string& di
   dir.integrity[file] = epoch >= 0 ? json{{"epoch", epoch}, {"digest", digest}} : json(digest);
 }
 
-void check_body_range(const BodySpec& b, const std::string& what) {
-  auto fmt = [](double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  };
-  if (!(b.height_cm >= kMinHeightCm && b.height_cm <= kMaxHeightCm))
-    throw Error(what + ": height_cm " + fmt(b.height_cm) + " outside " + fmt(kMinHeightCm) + "-" +
-                fmt(kMaxHeightCm));
-  if (!(b.weight_kg >= kMinWeightKg && b.weight_kg <= kMaxWeightKg))
-    throw Error(what + ": weight_kg " + fmt(b.weight_kg) + " outside " + fmt(kMinWeightKg) + "-" +
-                fmt(kMaxWeightKg));
-  if (b.sex != Sex::female && b.sex != Sex::male) throw Error(what + ": sex must be female or male");
-}
-
 }  // namespace ptnet

@@ -21,6 +21,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
@@ -45,8 +46,7 @@ std::string normalise(const std::string& name) {
   std::string s = name;
   const std::size_t cut = s.find_last_of(":|");
   if (cut != std::string::npos) s = s.substr(cut + 1);
-  std::string low;
-  for (char c : s) low += char(std::tolower(static_cast<unsigned char>(c)));
+  std::string low = lower(s);
   static const char* const kPrefixes[] = {"cc_base_", "mixamorig_", "mixamorig",
                                           "bip001_",  "bip01_",     "bip001 ",
                                           "bip01 ",   "def-",       "def_"};

@@ -24,6 +24,10 @@ const char* category_name(Category category) {
   return "?";
 }
 
+std::string motion_id(int performer, Category category, int take) {
+  return "p" + std::to_string(performer) + "_" + category_name(category) + "_t" + std::to_string(take);
+}
+
 int performer_sex(int performer, std::uint64_t seed) {
   return int((std::uint64_t(performer) + seed) % 2);  // alternating, so any set is balanced
 }

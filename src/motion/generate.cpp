@@ -112,8 +112,7 @@ Motion generate_motion(const GenerateOptions& options) {
   rig::settle_pelvis_heights(clip.controls, clip.nominal_z, offsets, options.fps);
 
   Motion m;
-  m.name = std::string("p") + std::to_string(options.performer) + "_" + category_name(options.category) +
-           "_t" + std::to_string(options.take);
+  m.name = motion_id(options.performer, options.category, options.take);
   m.fps = options.fps;
   m.frames.reserve(clip.controls.size());
   for (const auto& c : clip.controls) m.frames.push_back(rig::evaluate(c, offsets));

@@ -9,6 +9,7 @@
 #include "fk.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
@@ -17,11 +18,6 @@ namespace {
 constexpr double kCmuUnitM = 2.54 / 0.45 / 100;  // 0.056444 m
 constexpr double kTypicalHeightM = 1.7;
 constexpr double kMinHeightM = 1.0, kMaxHeightM = 2.3;
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 double unit_metres(Units u) {
   switch (u) {

@@ -10,6 +10,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/viz.hpp"
 
 namespace ptnet {
@@ -319,8 +320,7 @@ std::vector<Image> render_animation(const std::vector<FigurePanel>& panels, cons
 void render_figure(const Dataset& d, const std::vector<std::string>& names, const std::string& out,
                    const FigureOptions& opt, bool force) {
   if (names.empty()) throw Error("render: give at least one --sequence");
-  std::string ext = std::filesystem::path(out).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower(std::filesystem::path(out).extension().string());
   if (ext != ".png" && ext != ".gif")
     throw Error::in(out, "unknown figure type '" + ext + "', expected .png or .gif");
   check_output_path(out, force);

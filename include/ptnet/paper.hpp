@@ -1,0 +1,34 @@
+// ptnet/paper.hpp: the constants PressureTransferNet fixes (paper Sec. 3),
+// defined once; every stage reads them from here.
+//
+//   ptnet::MatSpec mat;                            // kMatRows x kMatCols cells of kMatPitchM
+//   bool contact = kpa > ptnet::kContactKpa;       // the binary R^2's binarisation
+//   const auto& d = ptnet::paper_distribution(Sex::male);  // 175 +- 15 cm, 75 +- 10 kg
+//
+// Dimension legend: T = kWindowFrames frames, H x W = kMatRows x kMatCols cells.
+#pragma once
+
+namespace ptnet {
+
+inline constexpr int kWindowFrames = 30;     // T: frames per window (the network's channels)
+inline constexpr int kWindowStride = 1;      // frames between window starts
+inline constexpr double kFps = 30;           // frame rate (Hz); mocap is resampled to it
+inline constexpr int kMatRows = 80;          // H: cells along the mat's long (walking) axis
+inline constexpr int kMatCols = 28;          // W: cells across
+inline constexpr double kMatPitchM = 0.02;   // cell size (m): a 1.60 m x 0.56 m mat
+inline constexpr double kContactKpa = 0.5;   // a cell above this is in contact (binary R^2)
+
+// Body attributes the tool accepts at its interfaces (CLI, CSV, datasets, models).
+inline constexpr double kMinHeightCm = 100, kMaxHeightCm = 230;
+inline constexpr double kMinWeightKg = 20, kMaxWeightKg = 250;
+
+// The Gaussian body sets of the paper's protocol (training bodies, and the
+// synthetic bodies of the HAR validation).
+struct BodyDistribution {
+  double height_mean_cm, height_sd_cm;
+  double weight_mean_kg, weight_sd_kg;
+};
+inline constexpr BodyDistribution kPaperFemale{165, 15, 65, 10};
+inline constexpr BodyDistribution kPaperMale{175, 15, 75, 10};
+
+}  // namespace ptnet

@@ -1,0 +1,31 @@
+// ptnet/strings.hpp: the small text helpers every stage shares (the one
+// definition of each; no stage keeps its own copy).
+//
+//   ptnet::split("female, 165 ,60", ',')     // {"female", "165", "60"}
+//   ptnet::split_list("1, 2,,3")              // {"1", "2", "3"} (empty items dropped)
+//   ptnet::lower(ptnet::trim("  Male "))      // "male"
+//   double v; ptnet::parse_number("1e3", v)  // true, v = 1000
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ptnet {
+
+// Without leading and trailing blanks (space, tab, CR, LF).
+std::string trim(std::string_view s);
+// ASCII lower case.
+std::string lower(std::string s);
+// Fields between `sep`, each trimmed; "" gives {""}, "a," gives {"a", ""}.
+std::vector<std::string> split(std::string_view text, char sep = ',');
+// A comma-separated list as typed on a command line: items trimmed, empty ones dropped.
+std::vector<std::string> split_list(std::string_view text);
+// The items joined with `sep`.
+std::string join(const std::vector<std::string>& items, std::string_view sep = ",");
+bool starts_with(std::string_view s, std::string_view prefix);
+bool ends_with(std::string_view s, std::string_view suffix);
+// A finite number that is the whole (trimmed) text; false otherwise (value unchanged).
+bool parse_number(std::string_view text, double& value);
+
+}  // namespace ptnet
