@@ -3,7 +3,6 @@
 // --dataset, the training subjects of such a dataset as a fine-tuning set for
 // `ptnet train --init`. Thin glue over ptnet::har::import_recordings and
 // ptnet::har::write_finetune_set (docs/har.md).
-#if defined(PTNET_HAR_IMPORT)
 #include <sstream>
 
 #include "command.hpp"
@@ -58,4 +57,3 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(68, setup);
-#endif

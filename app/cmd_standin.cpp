@@ -2,7 +2,6 @@
 // procedural subjects, or one per CMU subject of a mocap folder, on their own
 // bodies, a degraded sensor; docs/har.md). Thin glue
 // over ptnet::har::write_standin.
-#if defined(PTNET_HAR_STANDIN)
 #include <iostream>
 
 #include "command.hpp"
@@ -57,7 +56,7 @@ void setup(CLI::App& app) {
   s->add_flag("--force", c->force, "Overwrite an existing file");
   s->callback([c] {
     if (!ptnet::cli::globals().quiet)
-      c->o.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+      c->o.progress = ptnet::cli::print;
     ptnet::har::write_standin(c->out, c->o, c->force);
   });
 }
@@ -65,4 +64,3 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(69, setup);
-#endif

@@ -1,7 +1,6 @@
 // ptnet validate-har: does transferred data help an activity classifier?
 // (paper section 4.2, Table 3; docs/har.md). Thin glue over ptnet/har.hpp
 // and ptnet/transfer.hpp.
-#if defined(PTNET_HAR_EXPERIMENT) && defined(PTNET_HAR_TRANSFER) && defined(PTNET_HAR_HTML)
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -71,14 +70,8 @@ void run(const ValidateHarCli& o) {
   h.seed = o.seed;
   h.synthetic_bodies = o.synthetic_bodies;
   h.category_labels = !o.no_categories;
-  if (!o.bodies.empty()) {
-#ifdef PTNET_HAR_BODIES  // the body stage implements read_bodies_csv
-    h.bodies = ptnet::read_bodies_csv(o.bodies);
-#else
-    throw ptnet::Error("--bodies: reading a bodies CSV needs the body stage, not built");
-#endif
-  }
-  if (!quiet) h.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  if (!o.bodies.empty()) h.bodies = ptnet::read_bodies_csv(o.bodies);
+  if (!quiet) h.progress = ptnet::cli::print;
 
   // Outputs are checked before hours of work, not after.
   std::error_code ec;
@@ -207,4 +200,3 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(70, setup);
-#endif

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#ifdef PTNET_HAR_EXPERIMENT
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -163,6 +162,3 @@ TEST(HarExperiment, PaperBodiesAreSeededAndPlausible) {
   EXPECT_NEAR(male_h, 175, 12);    // mean of 10 draws of N(175, 15)
   EXPECT_NEAR(female_h, 165, 12);
 }
-#else
-TEST(HarExperiment, NeedsTheDatasetStage) { GTEST_SKIP() << "dataset stage not built yet"; }
-#endif

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#ifdef PTNET_HAR_IMPORT
 #include <filesystem>
 #include <fstream>
 
@@ -83,6 +82,3 @@ TEST(HarImport, BadManifestLinesNameFileAndLine) {
   EXPECT_EQ(message("subject,sex,height_cm,weight_kg,file\ns1,f,160,55,b.csv\n"),
             (f.dir / "b.csv").string() + ":1: expected 6 values (2 x 3), found 3");
 }
-#else
-TEST(HarImport, NeedsTheNpyReader) { GTEST_SKIP() << "npy reader (core) not built yet"; }
-#endif

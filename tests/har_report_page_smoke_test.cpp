@@ -7,7 +7,6 @@
 // is not installed.
 #include <gtest/gtest.h>
 
-#if defined(PTNET_HAR_HTML)
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -149,6 +148,3 @@ TEST(HarReportPage, ValidateHarWritesThePageAndItLoads) {
 
 }  // namespace
 }  // namespace ptnet::har
-#else
-TEST(HarReportPage, NeedsTheVizStage) { GTEST_SKIP() << "viz stage not built: no HAR page"; }
-#endif

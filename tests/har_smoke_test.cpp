@@ -2,7 +2,6 @@
 // exit status 1 before any work is done.
 #include <gtest/gtest.h>
 
-#if defined(PTNET_HAR_EXPERIMENT) && defined(PTNET_HAR_TRANSFER)
 #include <sys/wait.h>
 
 #include <array>
@@ -121,6 +120,3 @@ TEST(HarSmoke, ModelOfAnotherMatSizeIsAnError) {
   EXPECT_EQ(r.err, "ptnet: error: " + f.model + "/config.json: model mat 64x32 (0.02 m) differs from " +
                        f.data + "'s 80x28 (0.02 m)\n");
 }
-#else
-TEST(HarSmoke, NeedsTheModelStage) { GTEST_SKIP() << "model stage not built yet"; }
-#endif
