@@ -48,7 +48,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
   r.data_path = data_path;
   r.out_dir = report_dir;
   r.force = c.force;
-  r.progress = [](int done, int total) { print_progress("evaluate", done, total, "pairs"); };
+  r.progress = print;
   const EvaluationResult e = run_evaluation(r);
   char line[160];
   std::snprintf(line, sizeof line, "model: %s (%d epochs, best %d, %.0f s)", model_dir.c_str(), t.epochs_run,
@@ -84,8 +84,8 @@ void run(const DemoCli& c) {
   so.config_json = "{\"performers\": " + std::to_string(c.performers) + ", \"takes\": " +
                    std::to_string(c.takes) + ", \"seconds\": " + std::to_string(c.seconds) +
                    ", \"seed\": " + std::to_string(c.seed) + "}";
-  so.progress = [](const std::string& phase, int done, int total) {
-    if (phase == "simulate") print_progress(phase, done, total, "sequences");
+  so.progress = [](const Progress& p) {
+    if (p.what == "simulate") print(p);
   };
   simulate_dataset(clips, bodies, data_path, so);
   const Dataset d = Dataset::open(data_path);

@@ -32,7 +32,7 @@ void run(const EvaluateCli& c) {
   r.threads = c.threads;
   r.raw = c.raw;
   r.force = c.force;
-  r.progress = [](int done, int total) { print_progress("evaluate", done, total, "pairs"); };
+  r.progress = print;
   const EvaluationResult result = run_evaluation(r);
   std::cout << result.table << "\n" << kPaperTable2Line << "\n";
   for (const auto& p : result.written) std::cout << "wrote " << p << "\n";

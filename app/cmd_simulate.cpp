@@ -84,9 +84,7 @@ void run(const SimulateCli& c) {
   if (!quiet)
     std::cerr << "simulate: " << clips.size() << " clips x " << bodies.size() << " bodies = "
               << clips.size() * bodies.size() << " sequences\n";
-  o.progress = [](const std::string& phase, int done, int total) {
-    print_progress(phase, done, total, phase == "load" ? "clips" : "sequences");
-  };
+  o.progress = print;
   const SimulateDatasetSummary r = simulate_dataset(clips, bodies, c.out, o);
   if (!quiet) {
     std::fprintf(stderr, "simulate: %d sequences, %lld frames in %.1f s (%.0f frames/s)\n", r.sequences,

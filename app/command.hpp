@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "ptnet/error.hpp"
-#include "ptnet/parallel.hpp"
+#include "ptnet/io.hpp"
 #include "ptnet/progress.hpp"
 
 namespace ptnet::cli {
@@ -129,6 +129,14 @@ inline void print_progress(const std::string& what, long long done, long long to
   }
   if (!extra.empty()) line += ", " + extra;
   std::cerr << (tty ? "\r\033[K" : "") << line << (end || !tty ? "\n" : "") << std::flush;
+}
+
+// The one printer of the library's Progress for every command: a line as it
+// is, a count through print_progress. Nothing with --quiet.
+inline void print(const Progress& p) {
+  if (globals().quiet) return;
+  if (!p.line.empty()) std::cerr << p.line << "\n";
+  else print_progress(p.what, p.done, p.total, p.unit);
 }
 
 // TrainOptions::progress for `ptnet train` and `ptnet demo`: the library's

@@ -54,10 +54,11 @@ TEST(Protocol, OracleModelIsPerfectAndBaselinesAreNot) {
   };
   int calls = 0;
   EvaluateOptions options;
-  options.progress = [&](int done, int total) {
+  options.progress = [&](const Progress& p) {
     ++calls;
-    EXPECT_EQ(total, 12);
-    EXPECT_EQ(done, calls);
+    EXPECT_EQ(p.total, 12);
+    EXPECT_EQ(p.done, calls);
+    EXPECT_EQ(p.unit, "pairs");
   };
   const auto rows = evaluate_pairs(d, oracle, options);
   ASSERT_EQ(rows.size(), 48u);

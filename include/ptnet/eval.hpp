@@ -30,6 +30,7 @@
 #include "ptnet/body_spec.hpp"
 #include "ptnet/model_config.hpp"
 #include "ptnet/pressure.hpp"
+#include "ptnet/progress.hpp"
 
 namespace ptnet {
 
@@ -117,8 +118,8 @@ using TransferFn = std::function<PressureSequence(
 
 struct EvaluateOptions {
   MetricOptions metrics;
-  // Called after each pair with (pairs done, pairs total).
-  std::function<void(int, int)> progress;
+  // A count after each pair: {"evaluate", done, total, "pairs"}.
+  ProgressFn progress;
   // > 0: the model function returns its raw output, evaluated as "model_raw",
   // and "model" is that output with cells below this threshold (kPa) set to 0
   // (the model's fitted contact threshold): both from one transfer.
@@ -195,7 +196,7 @@ struct EvaluationRun {
   int threads = 0;                     // Torch threads (0: default)
   bool raw = false;                    // skip the model's fitted contact threshold
   bool force = false;                  // overwrite report files
-  std::function<void(int, int)> progress;  // (pairs done, pairs total)
+  ProgressFn progress;                 // EvaluateOptions::progress
 };
 struct EvaluationResult {
   std::vector<EvalRow> rows;

@@ -30,6 +30,7 @@
 
 #include "ptnet/body_spec.hpp"
 #include "ptnet/pressure.hpp"
+#include "ptnet/progress.hpp"
 
 namespace ptnet {
 class Dataset;
@@ -231,7 +232,7 @@ struct HarOptions {
                                  // the paper's synthetic:real ratio when fine-tuning)
   std::uint64_t seed = 1;        // body sampling
   bool category_labels = true;   // also train/evaluate on the dataset's category labels
-  std::function<void(const std::string&)> progress;  // one line per step, may be empty
+  ProgressFn progress;           // a line {"har", line} per step, may be empty
 };
 
 // Bodies like the paper's (half female 165 +- 15 cm, 65 +- 10 kg; half male
@@ -325,17 +326,13 @@ struct StandinOptions {
   double dead_fraction = 0.01;    // cells that always read 0
   std::uint64_t seed = 1;
   int threads = 0;                // simulation threads (0: all cores)
-  std::function<void(const std::string&)> progress;
+  ProgressFn progress;            // a line {"standin", line} per step, may be empty
 };
 
 // Writes the stand-in dataset to `path` (atomically; refuses to overwrite
 // without force). Bodies have role "original"; sequences carry performer,
 // category and take; the root config attribute says "stand-in".
 void write_standin(const std::string& path, const StandinOptions& options, bool force);
-
-// The per-cell gain map and dead cells of the stand-in sensor: [H, W] gains
-// (0 = dead), deterministic in the seed.
-std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& options);
 
 // ---------------------------------------------------------------- import
 

@@ -63,6 +63,7 @@
 #include "ptnet/body.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/pressure.hpp"
+#include "ptnet/progress.hpp"
 
 namespace ptnet {
 
@@ -162,11 +163,11 @@ struct SimJob {
 };
 
 // Runs every job on `threads` threads (0: hardware concurrency); result i is
-// job i, identical whatever the thread count. `progress(done, total)` is
-// called from the worker threads (serialised), if given.
-std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
-                                            const SimOptions& options, int threads,
-                                            const std::function<void(int done, int total)>& progress = {});
+// job i, identical whatever the thread count. `progress` gets a count
+// {"simulate", done, total, "sequences"} from the worker threads
+// (serialised), if given.
+std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs, const SimOptions& options,
+                                            int threads, const ProgressFn& progress = {});
 
 // A per-sequence seed from a run seed and the sequence name (FNV-1a + mix).
 std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name);

@@ -107,10 +107,10 @@ struct SimulateDatasetOptions {
   bool noise_floor = true;        // /floor/<name> for sequences on original bodies
   std::string generator = "ptnet simulate";
   std::string config_json;        // "" : built from the options
-  // Called as work completes: (phase, done, total); phase "load" for clips,
-  // "simulate" for sequences. Calls are serialised but may come from worker
-  // threads.
-  std::function<void(const std::string& phase, int done, int total)> progress;
+  // Counts as work completes: {"load", done, total, "clips"}, then
+  // {"simulate", done, total, "sequences"}. Calls are serialised but may come
+  // from worker threads.
+  ProgressFn progress;
 };
 
 struct SimulateDatasetSummary {

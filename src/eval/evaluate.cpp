@@ -89,7 +89,7 @@ std::vector<EvalRow> evaluate_pairs(const Dataset& dataset, const TransferFn& mo
       r.metrics = compare(predicted, truth, options.metrics);
       rows.push_back(std::move(r));
     }
-    if (options.progress) options.progress(++done, int(pairs.size()));
+    if (options.progress) options.progress(progress_count("evaluate", ++done, int(pairs.size()), "pairs"));
   }
   return rows;
 }

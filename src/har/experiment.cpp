@@ -155,7 +155,7 @@ namespace {
 // ---- the phases of validate_har(), in order
 
 void say(const HarOptions& o, const std::string& line) {
-  if (o.progress) o.progress(line);
+  if (o.progress) o.progress(progress_line("har", line));
 }
 
 void check_options(const TransferFn& transfer, const HarOptions& o) {

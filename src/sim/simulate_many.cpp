@@ -3,14 +3,14 @@
 #include <mutex>
 
 #include "ptnet/error.hpp"
-#include "ptnet/parallel.hpp"
+#include "core/parallel.hpp"
 #include "ptnet/sim.hpp"
 
 namespace ptnet {
 
 std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
                                             const SimOptions& options, int threads,
-                                            const std::function<void(int, int)>& progress) {
+                                            const ProgressFn& progress) {
   for (const auto& j : jobs)
     if (!j.motion || !j.body) throw Error("simulate_many: a job has no motion or body");
   const int n = int(jobs.size());
@@ -25,7 +25,7 @@ std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
                                         : simulate(*job.motion, *job.body, o);
     std::lock_guard<std::mutex> lock(mutex);
     ++done;
-    if (progress) progress(done, n);
+    if (progress) progress(progress_count("simulate", done, n, "sequences"));
   });
   return out;
 }
