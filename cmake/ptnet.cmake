@@ -37,7 +37,9 @@ function(ptnet_test file)
   get_filename_component(name ${file} NAME_WE)
   add_executable(${name} ${file})
   target_link_libraries(${name} PRIVATE ${PTNET_STAGES} GTest::gtest GTest::gtest_main)
-  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  # Tests reach a stage's internals (src/<stage>/*.hpp) through the stages'
+  # private include path: #include "train/window_index.hpp".
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests ${PROJECT_SOURCE_DIR}/src)
   target_compile_definitions(${name} PRIVATE
     PTNET_TEST_DATA="${PROJECT_SOURCE_DIR}/tests/data"
     PTNET_SHARED_MOCAP="${PROJECT_SOURCE_DIR}/../shared/mocap"

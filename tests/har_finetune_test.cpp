@@ -4,13 +4,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#if defined(PTNET_HAR_IMPORT) && defined(PTNET_HAR_TRANSFER)
 #include <filesystem>
 
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 #include "ptnet/train.hpp"
+#include "train/window_index.hpp"
 
 namespace fs = std::filesystem;
 using namespace ptnet;
@@ -102,6 +102,3 @@ TEST(HarFinetune, BadSubjectListsAreOneLineErrors) {
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(dir);
 }
-#else
-TEST(HarFinetune, NeedsImportAndTraining) { GTEST_SKIP() << "npy reader or model stage not built yet"; }
-#endif

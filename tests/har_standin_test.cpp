@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#ifdef PTNET_HAR_STANDIN
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +13,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
+#include "har/standin.hpp"
 #include "ptnet/simulate_dataset.hpp"
 
 using namespace ptnet;
@@ -145,6 +145,3 @@ TEST(HarStandin, BadClipsCsvLinesNameFileAndLine) {
             csv + ":2: expected take as an integer in 1-1000000, found '0'");
   fs::remove_all(dir);
 }
-#else
-TEST(HarStandin, NeedsTheSimulator) { GTEST_SKIP() << "simulator stage not built yet"; }
-#endif

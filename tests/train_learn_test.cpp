@@ -16,6 +16,7 @@
 #include "ptnet/model.hpp"
 #include "ptnet/transfer.hpp"
 #include "train_synthetic.hpp"
+#include "train/window_index.hpp"
 
 using namespace ptnet;
 using namespace ptnet::testing;

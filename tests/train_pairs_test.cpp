@@ -6,6 +6,7 @@
 
 #include "ptnet/error.hpp"
 #include "train_synthetic.hpp"
+#include "train/window_index.hpp"
 
 using namespace ptnet;
 using ptnet::testing::synth_source;

@@ -91,6 +91,10 @@ class CommitGroup {
 // Writes `text` to `path` atomically (see AtomicFile).
 void write_text_file(const std::string& path, const std::string& text, bool force);
 
+// The most threads any option may ask for: 4 x the hardware threads (at
+// least 4). More only adds scheduling overhead and memory.
+int max_threads();
+
 // Bytes of memory available to this process now (MemAvailable), or 0 if unknown.
 std::uint64_t available_memory_bytes();
 // Throws Error "FILE: WHAT needs 12 GB, more than the 3.1 GB of available

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <thread>
 
 #include "ptnet/error.hpp"
 
@@ -306,5 +308,7 @@ std::string bytes_text(std::uint64_t bytes) {
   else std::snprintf(buf, sizeof buf, "%.3g GB", double(bytes) / 1e9);
   return buf;
 }
+
+int max_threads() { return 4 * int(std::max(1u, std::thread::hardware_concurrency())); }
 
 }  // namespace ptnet

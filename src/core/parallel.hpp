@@ -1,4 +1,5 @@
-// ptnet/parallel.hpp: the project's one thread pool loop.
+// core/parallel.hpp: the project's one thread pool loop (internal to the
+// library: the stages include it through their private include path).
 //
 //   std::vector<double> out(n);
 //   ptnet::parallel_for(n, threads, [&](int i) { out[i] = work(i); });
@@ -16,11 +17,9 @@
 #include <thread>
 #include <vector>
 
-namespace ptnet {
+#include "ptnet/io.hpp"  // max_threads
 
-// The most threads any option may ask for: 4 x the hardware threads (at
-// least 4). More only adds scheduling overhead and memory.
-inline int max_threads() { return 4 * int(std::max(1u, std::thread::hardware_concurrency())); }
+namespace ptnet {
 
 template <class F>
 void parallel_for(int n, int threads, F f) {

@@ -20,6 +20,7 @@
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
 #include "ptnet/simulate_dataset.hpp"
+#include "standin.hpp"
 
 namespace ptnet::har {
 namespace {
@@ -181,7 +182,7 @@ std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& o)
 void write_standin(const std::string& path, const StandinOptions& o, bool force) {
   check_output_path(path, force);
   auto say = [&](const std::string& s) {
-    if (o.progress) o.progress(s);
+    if (o.progress) o.progress(progress_line("standin", s));
   };
   StandinPlan plan = o.mocap.empty() ? procedural_plan(o) : mocap_plan(o);
 

@@ -9,7 +9,6 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/parallel.hpp"
 #include "ptnet/model.hpp"
 
 namespace ptnet {

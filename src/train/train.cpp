@@ -18,9 +18,9 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model.hpp"
-#include "ptnet/parallel.hpp"
 #include "ptnet/zip_check.hpp"
 #include "ptnet/train.hpp"
+#include "window_index.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;

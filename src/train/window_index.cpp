@@ -7,6 +7,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/train.hpp"
+#include "window_index.hpp"
 
 namespace ptnet {
 namespace {
