@@ -5,12 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <mutex>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace ptnet {
 namespace {
@@ -36,14 +37,14 @@ std::string default_config(const std::vector<ClipSource>& clips, const std::vect
   return j.dump();
 }
 
-}  // namespace
-
-namespace {
 constexpr std::uint64_t kMaxSequences = 10000000;  // sequences of one dataset
 
-SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
-                           const std::string& out_path, const SimulateDatasetOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+// ---- the phases of run(), in order
+
+// Threads to use; throws Error for impossible options, and for an output
+// that may not be written, before any work.
+int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies, const std::string& out_path,
+              const SimulateDatasetOptions& options) {
   if (clips.empty()) throw Error("simulate: no clips to simulate");
   if (bodies.empty()) throw Error("simulate: no bodies to simulate on");
   if (!(options.fps >= 1 && options.fps <= 1000))
@@ -52,18 +53,17 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
   if (options.threads < 0 || options.threads > max_threads())
     throw Error("simulate: threads must be in 0-" + std::to_string(max_threads()) + ", found " +
                 std::to_string(options.threads));
-  const int threads =
-      options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<Body> built;
-  built.reserve(bodies.size());
-  for (const auto& b : bodies) built.emplace_back(b);  // validates
+  return options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+}
 
-  // 1. Every clip, loaded once: a bad file fails the run before any simulation.
+// 1. Every clip, loaded once: a bad file fails the run before any simulation.
+//    Each clip's placement on the mat is decided here, once, from the
+//    source motion; every body's copy gets it scaled (MotionPlacement).
+void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptions& options, int threads,
+                std::vector<Motion>& motions, std::vector<MotionPlacement>& places) {
   const int nc = int(clips.size());
-  //    Each clip's placement on the mat is decided here, once, from the
-  //    source motion; every body's copy gets it scaled (MotionPlacement).
-  std::vector<Motion> motions(clips.size());
-  std::vector<MotionPlacement> places(clips.size());
+  motions.assign(clips.size(), Motion{});
+  places.assign(clips.size(), MotionPlacement{});
   std::mutex progress_mutex;
   int loaded = 0;
   parallel_for(nc, threads, [&](int i) {
@@ -71,14 +71,19 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
     places[std::size_t(i)] = place_motion(motions[std::size_t(i)], options.sim);
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
-      options.progress("load", ++loaded, nc);
+      options.progress(progress_count("load", ++loaded, nc, "clips"));
     }
   });
-  // Sizes before allocating: sequence count, then the memory of the metadata
-  // and of one chunk of simulated sequences (plus one per thread at work).
-  const std::uint64_t jobs = checked_mul(std::uint64_t(nc), bodies.size(), out_path, "clips x bodies");
+}
+
+// Sizes before allocating: sequence count, then the memory of the metadata
+// and of one chunk of simulated sequences (plus one per thread at work).
+void check_sizes(const std::vector<Motion>& motions, std::size_t bodies, const std::string& out_path,
+                 const SimulateDatasetOptions& options, int threads) {
+  const int nc = int(motions.size());
+  const std::uint64_t jobs = checked_mul(std::uint64_t(nc), bodies, out_path, "clips x bodies");
   if (jobs > std::uint64_t(kMaxSequences))
-    throw Error::in(out_path, std::to_string(nc) + " clips x " + std::to_string(bodies.size()) + " bodies = " +
+    throw Error::in(out_path, std::to_string(nc) + " clips x " + std::to_string(bodies) + " bodies = " +
                                   std::to_string(jobs) + " sequences, more than the " +
                                   std::to_string(kMaxSequences) + " a dataset may have");
   std::uint64_t longest = 0;
@@ -94,13 +99,16 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
                out_path, "simulating " + std::to_string(jobs) + " sequences of up to " + std::to_string(longest) +
                              " frames on a " + std::to_string(options.sim.mat.rows) + " x " +
                              std::to_string(options.sim.mat.cols) + " mat");
-  SimulateDatasetSummary summary;
-  summary.clips = nc;
-  summary.bodies = int(bodies.size());
-  std::vector<SequenceMeta> metas;  // [clips x bodies], clip-major
-  for (int c = 0; c < nc; ++c) {
-    SequenceMeta m = clips[std::size_t(c)].meta;
-    if (m.category.empty()) m.category = category_from_motion(motions[std::size_t(c)]);
+}
+
+// The sequences' metadata [clips x bodies], clip-major; a clip without a
+// category gets one guessed from its motion (into summary.categories).
+std::vector<SequenceMeta> sequence_metas(const std::vector<ClipSource>& clips, const std::vector<Motion>& motions,
+                                         const std::vector<BodySpec>& bodies, SimulateDatasetSummary& summary) {
+  std::vector<SequenceMeta> metas;
+  for (std::size_t c = 0; c < clips.size(); ++c) {
+    SequenceMeta m = clips[c].meta;
+    if (m.category.empty()) m.category = category_from_motion(motions[c]);
     summary.categories.push_back(m.category);
     for (const auto& b : bodies) {
       SequenceMeta s = m;
@@ -109,17 +117,16 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
       metas.push_back(std::move(s));
     }
   }
+  return metas;
+}
 
-  DatasetInfo info;
-  info.mat = options.sim.mat;
-  info.fps = options.fps;
-  info.generator = options.generator;
-  info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
-  DatasetWriter writer(out_path, info, bodies, options.force);
-
-  // 2. Chunks of jobs: retarget, simulate, write. Sequences on original
-  //    bodies are simulated a second time with another sensor seed (the
-  //    noise floor, /floor/<name>); progress counts only the sequences.
+// 2. Chunks of jobs: retarget, simulate, write. Sequences on original
+//    bodies are simulated a second time with another sensor seed (the
+//    noise floor, /floor/<name>); progress counts only the sequences.
+void simulate_chunks(const std::vector<Motion>& motions, const std::vector<MotionPlacement>& places,
+                     const std::vector<BodySpec>& bodies, const std::vector<Body>& built,
+                     const std::vector<SequenceMeta>& metas, const SimulateDatasetOptions& options, int threads,
+                     DatasetWriter& writer, SimulateDatasetSummary& summary) {
   const int nb = int(bodies.size()), total = int(metas.size());
   const int chunk = options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads);
   const auto with_floor = [&](int j) { return options.noise_floor && bodies[std::size_t(j % nb)].role == "original"; };
@@ -147,8 +154,9 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
         f.seed = floor_seed(options.seed, metas[std::size_t(j)].name);
         jobs.push_back(f);
       }
-    const std::vector<PressureSequence> seqs = simulate_many(jobs, options.sim, threads, [&](int d, int n) {
-      if (options.progress) options.progress("simulate", done + d * (j1 - j0) / n, total);
+    const std::vector<PressureSequence> seqs = simulate_many(jobs, options.sim, threads, [&](const Progress& p) {
+      if (options.progress)
+        options.progress(progress_count("simulate", done + int(p.done) * (j1 - j0) / int(p.total), total, "sequences"));
     });
     for (int j = j0; j < j1; ++j) {
       const PressureSequence& s = seqs[std::size_t(j - j0)];
@@ -159,8 +167,32 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
     }
     done = j1;
   }
+}
+
+SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
+                           const std::string& out_path, const SimulateDatasetOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const int threads = check_run(clips, bodies, out_path, options);
+  std::vector<Body> built;
+  built.reserve(bodies.size());
+  for (const auto& b : bodies) built.emplace_back(b);  // validates
+  std::vector<Motion> motions;
+  std::vector<MotionPlacement> places;
+  load_clips(clips, options, threads, motions, places);
+  check_sizes(motions, bodies.size(), out_path, options, threads);
+  SimulateDatasetSummary summary;
+  summary.clips = int(clips.size());
+  summary.bodies = int(bodies.size());
+  const std::vector<SequenceMeta> metas = sequence_metas(clips, motions, bodies, summary);
+  DatasetInfo info;
+  info.mat = options.sim.mat;
+  info.fps = options.fps;
+  info.generator = options.generator;
+  info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
+  DatasetWriter writer(out_path, info, bodies, options.force);
+  simulate_chunks(motions, places, bodies, built, metas, options, threads, writer, summary);
   writer.commit();
-  summary.sequences = total;
+  summary.sequences = int(metas.size());
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

@@ -51,28 +51,41 @@ const std::vector<std::string>& feature_names() {
   return names;
 }
 
-// window [T, H, W] kPa -> [F] (units in feature_names()).
-std::vector<double> window_feature_vector(const float* window, int frames, const MatSpec& mat,
-                                          double fps) {
+namespace {
+
+// Per-frame quantities of a window [T, H, W] kPa, and the window-averaged map.
+struct FrameSeries {
+  std::vector<double> force, area, peak;          // [T] N, cells in contact, kPa
+  std::vector<double> cop_x, cop_y;               // [T] centre of pressure (m), 0 when unloaded
+  std::vector<double> cop_r, cop_c;               // [T] the same in cell units
+  std::vector<double> spread_x, spread_y;         // [T] load spread about it (m)
+  std::vector<double> mean_map;                   // [H, W] kPa averaged over the frames
+  double change = 0, change_norm = 0;             // sum |frame t - frame t-1|, sum of all load
+  std::vector<int> loaded;                        // frames with load (centre of pressure defined)
+  double force_mean = 0;
+};
+
+// Cell centre along (x) and across (y) the mat (m).
+double cell_x(const MatSpec& mat, int r) { return mat.rows * mat.pitch_m / 2 - (r + 0.5) * mat.pitch_m; }
+double cell_y(const MatSpec& mat, int c) { return mat.cols * mat.pitch_m / 2 - (c + 0.5) * mat.pitch_m; }
+
+FrameSeries frame_series(const float* window, int frames, const MatSpec& mat) {
   const int rows = mat.rows, cols = mat.cols, cells = mat.cells();
-  const double p = mat.pitch_m;
-  const double half_l = rows * p / 2, half_w = cols * p / 2;
   const double to_newton = 1000.0 * mat.cell_area_m2();  // kPa on one cell -> N
-  std::vector<double> force(frames), area(frames), peak(frames);
-  std::vector<double> cop_x(frames, 0), cop_y(frames, 0), spread_x(frames, 0), spread_y(frames, 0);
-  std::vector<double> cop_r(frames, 0), cop_c(frames, 0);
-  std::vector<double> mean_map(cells, 0.0);
-  double change = 0, change_norm = 0;
+  FrameSeries s;
+  for (auto* v : {&s.force, &s.area, &s.peak, &s.cop_x, &s.cop_y, &s.cop_r, &s.cop_c, &s.spread_x, &s.spread_y})
+    v->assign(frames, 0.0);
+  s.mean_map.assign(cells, 0.0);
   for (int t = 0; t < frames; ++t) {
     const float* f = window + std::size_t(t) * cells;
     double sum = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sr = 0, sc = 0, pk = 0;
     int contact = 0;
     for (int r = 0; r < rows; ++r) {
-      const double x = half_l - (r + 0.5) * p;
+      const double x = cell_x(mat, r);
       for (int c = 0; c < cols; ++c) {
         const double v = std::max(0.0f, f[r * cols + c]);
         if (v <= 0) continue;
-        const double y = half_w - (c + 0.5) * p;
+        const double y = cell_y(mat, c);
         sum += v;
         sx += v * x;
         sy += v * y;
@@ -82,44 +95,53 @@ std::vector<double> window_feature_vector(const float* window, int frames, const
         sc += v * c;
         pk = std::max(pk, v);
         if (v > kContactKpa) ++contact;
-        mean_map[r * cols + c] += v / frames;
+        s.mean_map[r * cols + c] += v / frames;
       }
     }
-    force[t] = sum * to_newton;
-    area[t] = contact;
-    peak[t] = pk;
+    s.force[t] = sum * to_newton;
+    s.area[t] = contact;
+    s.peak[t] = pk;
     if (sum > 0) {
-      cop_x[t] = sx / sum;
-      cop_y[t] = sy / sum;
-      cop_r[t] = sr / sum;
-      cop_c[t] = sc / sum;
-      spread_x[t] = std::sqrt(std::max(0.0, sxx / sum - cop_x[t] * cop_x[t]));
-      spread_y[t] = std::sqrt(std::max(0.0, syy / sum - cop_y[t] * cop_y[t]));
+      s.cop_x[t] = sx / sum;
+      s.cop_y[t] = sy / sum;
+      s.cop_r[t] = sr / sum;
+      s.cop_c[t] = sc / sum;
+      s.spread_x[t] = std::sqrt(std::max(0.0, sxx / sum - s.cop_x[t] * s.cop_x[t]));
+      s.spread_y[t] = std::sqrt(std::max(0.0, syy / sum - s.cop_y[t] * s.cop_y[t]));
     }
     if (t > 0) {
       const float* g = f - cells;
-      for (int i = 0; i < cells; ++i) change += std::fabs(double(f[i]) - double(g[i]));
+      for (int i = 0; i < cells; ++i) s.change += std::fabs(double(f[i]) - double(g[i]));
     }
-    change_norm += sum;
+    s.change_norm += sum;
   }
+  s.force_mean = stats(s.force).mean;
+  for (int t = 0; t < frames; ++t)
+    if (s.force[t] > 0 && !(s.force[t] < kAirborneFraction * s.force_mean)) s.loaded.push_back(t);
+  return s;
+}
 
-  std::vector<double> out;
-  out.reserve(feature_names().size());
-  const Stats fs = stats(force);
+// Mean of a per-frame series [T] over the loaded frames; `none` without any.
+double loaded_mean(const FrameSeries& s, const std::vector<double>& series, double none) {
+  if (s.loaded.empty()) return none;
+  double sum = 0;
+  for (int t : s.loaded) sum += series[t];
+  return sum / double(s.loaded.size());
+}
+
+// Force (mean, variation, changes, airborne frames) and contact area.
+void add_force_features(const FrameSeries& s, int frames, double seconds, std::vector<double>& out) {
+  const Stats fs = stats(s.force);
   const double fm = fs.mean > 1e-9 ? fs.mean : 1.0;
   double force_change = 0;
   int crossings = 0;
   for (int t = 1; t < frames; ++t) {
-    force_change += std::fabs(force[t] - force[t - 1]);
-    if ((force[t] - fs.mean) * (force[t - 1] - fs.mean) < 0) ++crossings;
+    force_change += std::fabs(s.force[t] - s.force[t - 1]);
+    if ((s.force[t] - fs.mean) * (s.force[t - 1] - fs.mean) < 0) ++crossings;
   }
-  const double seconds = frames > 1 ? (frames - 1) / fps : 1.0;
   int airborne = 0;
-  std::vector<int> loaded;  // frames with load (centre of pressure defined)
-  for (int t = 0; t < frames; ++t) {
-    if (force[t] < kAirborneFraction * fs.mean || force[t] <= 0) ++airborne;
-    if (force[t] > 0 && !(force[t] < kAirborneFraction * fs.mean)) loaded.push_back(t);
-  }
+  for (int t = 0; t < frames; ++t)
+    if (s.force[t] < kAirborneFraction * fs.mean || s.force[t] <= 0) ++airborne;
   out.push_back(fs.mean);
   out.push_back(fs.sd / fm);
   out.push_back(fs.min / fm);
@@ -127,30 +149,31 @@ std::vector<double> window_feature_vector(const float* window, int frames, const
   out.push_back(force_change / fm / seconds);
   out.push_back(crossings / seconds);
   out.push_back(double(airborne) / frames);
-  const Stats as = stats(area);
+  const Stats as = stats(s.area);
   out.push_back(as.mean);
   out.push_back(as.sd);
   out.push_back(as.min);
   out.push_back(as.max);
+}
 
-  // Centre-of-pressure path over the loaded frames.
+// Centre-of-pressure path over the loaded frames.
+void add_cop_features(const FrameSeries& s, double seconds, double fps, std::vector<double>& out) {
   double path = 0, speed_max = 0;
   std::vector<double> lx, ly;
-  for (std::size_t i = 0; i < loaded.size(); ++i) {
-    const int t = loaded[i];
-    lx.push_back(cop_x[t]);
-    ly.push_back(cop_y[t]);
+  for (std::size_t i = 0; i < s.loaded.size(); ++i) {
+    const int t = s.loaded[i];
+    lx.push_back(s.cop_x[t]);
+    ly.push_back(s.cop_y[t]);
     if (i > 0) {
-      const int u = loaded[i - 1];
-      const double d = std::hypot(cop_x[t] - cop_x[u], cop_y[t] - cop_y[u]);
+      const int u = s.loaded[i - 1];
+      const double d = std::hypot(s.cop_x[t] - s.cop_x[u], s.cop_y[t] - s.cop_y[u]);
       path += d;
       speed_max = std::max(speed_max, d * fps / (t - u));
     }
   }
   const Stats xs = stats(lx), ys = stats(ly);
   double net = 0;
-  if (loaded.size() > 1)
-    net = std::hypot(lx.back() - lx.front(), ly.back() - ly.front());
+  if (s.loaded.size() > 1) net = std::hypot(lx.back() - lx.front(), ly.back() - ly.front());
   out.push_back(path);
   out.push_back(path / seconds);
   out.push_back(speed_max);
@@ -160,56 +183,41 @@ std::vector<double> window_feature_vector(const float* window, int frames, const
   out.push_back(ys.max - ys.min);
   out.push_back(net);
   out.push_back(path > 1e-9 ? net / path : 0.0);
+}
 
-  // Spread of the load within a frame and of the window-averaged map.
-  double spx = 0, spy = 0;
-  for (int t : loaded) {
-    spx += spread_x[t];
-    spy += spread_y[t];
-  }
-  if (!loaded.empty()) {
-    spx /= double(loaded.size());
-    spy /= double(loaded.size());
-  }
-  out.push_back(spx);
-  out.push_back(spy);
-  {
-    double s = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c) {
-        const double v = mean_map[r * cols + c];
-        if (v <= 0) continue;
-        const double x = half_l - (r + 0.5) * p, y = half_w - (c + 0.5) * p;
-        s += v;
-        sx += v * x;
-        sy += v * y;
-        sxx += v * x * x;
-        syy += v * y * y;
-      }
-    double mx = s > 0 ? sx / s : 0, my = s > 0 ? sy / s : 0;
-    out.push_back(s > 0 ? std::sqrt(std::max(0.0, sxx / s - mx * mx)) : 0.0);
-    out.push_back(s > 0 ? std::sqrt(std::max(0.0, syy / s - my * my)) : 0.0);
-  }
-  const Stats ps = stats(peak);
+// Spread of the load within a frame and of the window-averaged map; peak
+// pressure; how much the map changes.
+void add_spread_features(const FrameSeries& s, const MatSpec& mat, std::vector<double>& out) {
+  out.push_back(loaded_mean(s, s.spread_x, 0.0));
+  out.push_back(loaded_mean(s, s.spread_y, 0.0));
+  double sum = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
+  for (int r = 0; r < mat.rows; ++r)
+    for (int c = 0; c < mat.cols; ++c) {
+      const double v = s.mean_map[r * mat.cols + c];
+      if (v <= 0) continue;
+      const double x = cell_x(mat, r), y = cell_y(mat, c);
+      sum += v;
+      sx += v * x;
+      sy += v * y;
+      sxx += v * x * x;
+      syy += v * y * y;
+    }
+  const double mx = sum > 0 ? sx / sum : 0, my = sum > 0 ? sy / sum : 0;
+  out.push_back(sum > 0 ? std::sqrt(std::max(0.0, sxx / sum - mx * mx)) : 0.0);
+  out.push_back(sum > 0 ? std::sqrt(std::max(0.0, syy / sum - my * my)) : 0.0);
+  const Stats ps = stats(s.peak);
   out.push_back(ps.mean);
   out.push_back(ps.max);
-  out.push_back(change_norm > 1e-9 ? change / change_norm : 0.0);
+  out.push_back(s.change_norm > 1e-9 ? s.change / s.change_norm : 0.0);
+}
 
-  // Contact occupancy in a grid of blocks centred on the window's mean
-  // centre of pressure (in cell units): fraction of block cells in contact,
-  // averaged over the frames.
-  double mr = 0, mc = 0;
-  for (int t : loaded) {
-    mr += cop_r[t];
-    mc += cop_c[t];
-  }
-  if (!loaded.empty()) {
-    mr /= double(loaded.size());
-    mc /= double(loaded.size());
-  } else {
-    mr = rows / 2.0;
-    mc = cols / 2.0;
-  }
+// Contact occupancy in a grid of blocks centred on the window's mean centre
+// of pressure (in cell units): fraction of block cells in contact, averaged
+// over the frames.
+void add_occupancy_features(const float* window, int frames, const MatSpec& mat, const FrameSeries& s,
+                            std::vector<double>& out) {
+  const int rows = mat.rows, cols = mat.cols, cells = mat.cells();
+  const double mr = loaded_mean(s, s.cop_r, rows / 2.0), mc = loaded_mean(s, s.cop_c, cols / 2.0);
   std::vector<double> grid(kCentredGridRows * kCentredGridCols, 0.0);
   const double r0 = mr - kCentredGridRows * kCentredBlockRows / 2.0;
   const double c0 = mc - kCentredGridCols * kCentredBlockCols / 2.0;
@@ -227,6 +235,20 @@ std::vector<double> window_feature_vector(const float* window, int frames, const
     }
   }
   for (double g : grid) out.push_back(g / (frames * kCentredBlockRows * kCentredBlockCols));
+}
+
+}  // namespace
+
+// window [T, H, W] kPa -> [F] (units in feature_names()).
+std::vector<double> window_feature_vector(const float* window, int frames, const MatSpec& mat, double fps) {
+  const FrameSeries s = frame_series(window, frames, mat);
+  const double seconds = frames > 1 ? (frames - 1) / fps : 1.0;
+  std::vector<double> out;
+  out.reserve(feature_names().size());
+  add_force_features(s, frames, seconds, out);
+  add_cop_features(s, seconds, fps, out);
+  add_spread_features(s, mat, out);
+  add_occupancy_features(window, frames, mat, s, out);
   return out;
 }
 

@@ -120,20 +120,14 @@ std::vector<int> assign_nearest(const Eigen::MatrixXd& modes, const Eigen::Matri
   return nearest(m, p, nullptr);
 }
 
-MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions& o) {
-  const int n = int(input.rows()), k = int(input.cols());
-  if (n < 1 || k < 1) throw Error("mean shift: no points to cluster");
-  if (!input.allFinite()) throw Error("mean shift: points contain NaN or infinity");
-  MeanShiftResult r;
-  if (o.bandwidth > 0) {
-    r.bandwidth = o.bandwidth;
-  } else {
-    r.bandwidth = n >= 2 ? estimate_bandwidth(input, o.quantile) : 1.0;
-  }
-  const double h = r.bandwidth;
-  const RowMajor x = input;
+namespace {
 
-  // Seeds: centres of occupied bandwidth-sized bins (ordered map: fixed order).
+// ---- the phases of mean_shift(), in order
+
+// Seeds: centres of occupied bandwidth-sized bins (ordered map: fixed
+// order), or every point when binning does not reduce them.
+std::vector<std::vector<double>> seeds_of(const RowMajor& x, const MeanShiftOptions& o, double h) {
+  const int n = int(x.rows()), k = int(x.cols());
   std::vector<std::vector<double>> seeds;
   if (o.bin_seeding) {
     std::map<std::vector<long long>, int> bins;
@@ -152,15 +146,21 @@ MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions&
     }
   }
   if (seeds.empty())
-    for (int i = 0; i < n; ++i) seeds.emplace_back(x.data() + std::size_t(i) * k,
-                                                   x.data() + std::size_t(i + 1) * k);
-  r.seeds = int(seeds.size());
+    for (int i = 0; i < n; ++i) seeds.emplace_back(x.data() + std::size_t(i) * k, x.data() + std::size_t(i + 1) * k);
+  return seeds;
+}
 
-  struct Mode {
-    std::vector<double> at;
-    int support;
-    int order;
-  };
+struct Mode {
+  std::vector<double> at;
+  int support;
+  int order;
+};
+
+// Every seed climbed to its mode, best supported first; `seed_count` grows by n
+// when no bin centre reached one (high K) and the points seed instead.
+std::vector<Mode> climb_modes(const RowMajor& x, const MeanShiftOptions& o, double h,
+                              const std::vector<std::vector<double>>& seeds, int& seed_count) {
+  const int n = int(x.rows()), k = int(x.cols());
   std::vector<Mode> modes;
   for (std::size_t s = 0; s < seeds.size(); ++s) {
     std::vector<double> m = seeds[s];
@@ -173,11 +173,15 @@ MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions&
       int support = 0;
       if (climb(x, o, h, m, support)) modes.push_back({std::move(m), support, i});
     }
-    r.seeds += n;
+    seed_count += n;
   }
-  std::stable_sort(modes.begin(), modes.end(),
-                   [](const Mode& a, const Mode& b) { return a.support > b.support; });
-  // Merge: a mode within merge_distance x h of a better-supported one is dropped.
+  std::stable_sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) { return a.support > b.support; });
+  return modes;
+}
+
+// Merge: a mode within merge_distance x h of a better-supported one is
+// dropped. [C, K].
+RowMajor merge_modes(const std::vector<Mode>& modes, const MeanShiftOptions& o, double h, int k) {
   const double merge2 = (o.merge_distance * h) * (o.merge_distance * h);
   std::vector<std::vector<double>> kept;
   for (const Mode& m : modes) {
@@ -192,11 +196,16 @@ MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions&
   RowMajor centres(int(kept.size()), k);
   for (int c = 0; c < int(kept.size()); ++c)
     for (int j = 0; j < k; ++j) centres(c, j) = kept[c][j];
+  return centres;
+}
 
-  // Assign, then fold clusters smaller than the minimum fraction, smallest
-  // first: their points go to the nearest remaining mode.
-  const int c0 = int(kept.size());
-  std::vector<bool> alive(c0, true);
+// Assign, then fold clusters smaller than the minimum fraction, smallest
+// first: their points go to the nearest remaining mode. Labels [N] into
+// `centres`; `alive` [C] marks the modes kept.
+std::vector<int> assign_and_fold(const RowMajor& centres, const RowMajor& x, const MeanShiftOptions& o,
+                                 std::vector<bool>& alive) {
+  const int n = int(x.rows()), c0 = int(centres.rows());
+  alive.assign(c0, true);
   std::vector<int> labels = nearest(centres, x, &alive);
   const long long min_size = (long long)std::ceil(o.min_cluster_fraction * n);
   for (;;) {
@@ -212,8 +221,14 @@ MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions&
     alive[worst] = false;
     labels = nearest(centres, x, &alive);
   }
+  return labels;
+}
 
-  // Renumber by size (largest first; ties by mode order).
+// Renumber by size (largest first; ties by mode order) into r.modes,
+// r.sizes and r.labels.
+void renumber(const RowMajor& centres, const std::vector<int>& labels, const std::vector<bool>& alive,
+              MeanShiftResult& r) {
+  const int n = int(labels.size()), c0 = int(centres.rows()), k = int(centres.cols());
   std::vector<int> size(c0, 0);
   for (int l : labels) ++size[l];
   std::vector<int> order;
@@ -229,6 +244,25 @@ MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions&
   }
   r.labels.resize(n);
   for (int i = 0; i < n; ++i) r.labels[i] = remap[labels[i]];
+}
+
+}  // namespace
+
+MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions& o) {
+  const int n = int(input.rows()), k = int(input.cols());
+  if (n < 1 || k < 1) throw Error("mean shift: no points to cluster");
+  if (!input.allFinite()) throw Error("mean shift: points contain NaN or infinity");
+  MeanShiftResult r;
+  if (o.bandwidth > 0) r.bandwidth = o.bandwidth;
+  else r.bandwidth = n >= 2 ? estimate_bandwidth(input, o.quantile) : 1.0;
+  const RowMajor x = input;
+  const auto seeds = seeds_of(x, o, r.bandwidth);
+  r.seeds = int(seeds.size());
+  const std::vector<Mode> modes = climb_modes(x, o, r.bandwidth, seeds, r.seeds);
+  const RowMajor centres = merge_modes(modes, o, r.bandwidth, k);
+  std::vector<bool> alive;
+  const std::vector<int> labels = assign_and_fold(centres, x, o, alive);
+  renumber(centres, labels, alive, r);
   return r;
 }
 

@@ -253,35 +253,18 @@ int Bvh::find(std::string_view joint_name) const {
   return -1;
 }
 
-Bvh parse_bvh(std::string_view text, const std::string& source) {
-  Bvh bvh;
-  bvh.source = source;
-  Lexer lex(text, source);
+namespace {
 
+// The MOTION header after its keyword: "Frames: N" and "Frame Time: S" (into
+// bvh.frame_time); the frame count.
+long parse_motion_header(Lexer& lex, Bvh& bvh) {
   Token t = lex.next();
-  if (t.text != "HIERARCHY") {
-    if (!t.text.empty() && !is_bvh_keyword(t.text))
-      throw Error::at(source, t.line, "HIERARCHY", "other text (not a BVH file)");
-    lex.fail(t.line, "HIERARCHY", t.text);
-  }
-  t = lex.next();
-  if (t.text != "ROOT") lex.fail(t.line, "ROOT", t.text);
-  HierarchyParser(lex, bvh).joint(-1, t.line, 0);
-
-  t = lex.next();
-  if (t.text != "MOTION") lex.fail(t.line, "MOTION", t.text);
-  const long motion_line = t.line;
-  if (bvh.channel_count == 0) lex.fail(motion_line, "CHANNELS on at least one joint", "none");
-
-  t = lex.next();
   if (t.text != "Frames:") lex.fail(t.line, "Frames:", t.text);
   Token n = lex.next();
   long frames = -1;
-  {
-    auto r = std::from_chars(n.text.data(), n.text.data() + n.text.size(), frames);
-    if (r.ec != std::errc() || r.ptr != n.text.data() + n.text.size() || frames < 1)
-      lex.fail(n.line, "a frame count of at least 1", n.text);
-  }
+  auto r = std::from_chars(n.text.data(), n.text.data() + n.text.size(), frames);
+  if (r.ec != std::errc() || r.ptr != n.text.data() + n.text.size() || frames < 1)
+    lex.fail(n.line, "a frame count of at least 1", n.text);
   t = lex.next();
   if (t.text != "Frame") lex.fail(t.line, "Frame Time:", t.text);
   t = lex.next();
@@ -293,12 +276,14 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
   bvh.frame_time = frame_time;
   Token extra;
   if (!lex.finish_line(extra)) lex.fail(extra.line, "end of line after Frame Time", extra.text);
+  return frames;
+}
 
-  // ---- MOTION lines: the hot loop.
+// The MOTION lines from `p` (at line `line`): the hot loop. `frames` rows of
+// channel_count values into bvh.values.
+void read_motion_lines(const char* p, const char* const end, long line, long frames, const std::string& source,
+                       Bvh& bvh) {
   const std::size_t cc = std::size_t(bvh.channel_count);
-  const char* p = text.data() + lex.pos();
-  const char* const end = text.data() + text.size();
-  long line = lex.line();
   // Each value takes at least two bytes ("0 "): never allocate past what the
   // remaining text could hold, whatever `Frames:` claims.
   const std::size_t most = std::size_t(end - p) / 2 + 1;
@@ -313,8 +298,7 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
       continue;
     }
     if (read == frames) throw Error::at(source, line, frame_lines(frames), "more");
-    if ((std::size_t(read) + 1) * cc > bvh.values.size())
-      bvh.values.resize(bvh.values.size() * 2 + cc);
+    if ((std::size_t(read) + 1) * cc > bvh.values.size()) bvh.values.resize(bvh.values.size() * 2 + cc);
     double* out = bvh.values.data() + std::size_t(read) * cc;
     std::size_t count = 0;
     for (;;) {
@@ -333,14 +317,35 @@ Bvh parse_bvh(std::string_view text, const std::string& source) {
       while (p < end && is_space(*p)) ++p;
       if (p == end || *p == '\n') break;
     }
-    if (count != cc)
-      throw Error::at(source, line, std::to_string(cc) + " values", std::to_string(count));
+    if (count != cc) throw Error::at(source, line, std::to_string(cc) + " values", std::to_string(count));
     ++read;
     if (p < end) ++p;  // the '\n'
     ++line;
   }
   if (read != frames) throw Error::at(source, line, frame_lines(frames), std::to_string(read));
   bvh.values.resize(std::size_t(frames) * cc);
+}
+
+}  // namespace
+
+Bvh parse_bvh(std::string_view text, const std::string& source) {
+  Bvh bvh;
+  bvh.source = source;
+  Lexer lex(text, source);
+  Token t = lex.next();
+  if (t.text != "HIERARCHY") {
+    if (!t.text.empty() && !is_bvh_keyword(t.text))
+      throw Error::at(source, t.line, "HIERARCHY", "other text (not a BVH file)");
+    lex.fail(t.line, "HIERARCHY", t.text);
+  }
+  t = lex.next();
+  if (t.text != "ROOT") lex.fail(t.line, "ROOT", t.text);
+  HierarchyParser(lex, bvh).joint(-1, t.line, 0);
+  t = lex.next();
+  if (t.text != "MOTION") lex.fail(t.line, "MOTION", t.text);
+  if (bvh.channel_count == 0) lex.fail(t.line, "CHANNELS on at least one joint", "none");
+  const long frames = parse_motion_header(lex, bvh);
+  read_motion_lines(text.data() + lex.pos(), text.data() + text.size(), lex.line(), frames, source, bvh);
   return bvh;
 }
 

@@ -140,89 +140,102 @@ int joint_parent(int joint) {
   return kParents[std::size_t(joint)];
 }
 
-std::array<int, kJointCount> map_canonical(const Bvh& bvh) {
-  std::array<int, kJointCount> map;
-  map.fill(-1);
-  std::vector<std::string> norm;
-  for (const BvhJoint& j : bvh.joints) norm.push_back(normalise(j.name));
+namespace {
 
-  // Our own canonical names (motion_to_bvh writes them): taken as they are.
-  bool all = true;
-  for (int k = 0; k < kJointCount && all; ++k) {
+using JointMap = std::array<int, kJointCount>;
+
+// Our own canonical names (motion_to_bvh writes them), taken as they are:
+// true when every joint has one.
+bool map_own_names(const std::vector<std::string>& norm, JointMap& map) {
+  map.fill(-1);
+  for (int k = 0; k < kJointCount; ++k) {
     const std::string want = normalise(kNames[std::size_t(k)]);
     for (std::size_t j = 0; j < norm.size() && map[std::size_t(k)] < 0; ++j)
       if (norm[j] == want) map[std::size_t(k)] = int(j);
-    all = map[std::size_t(k)] >= 0;
+    if (map[std::size_t(k)] < 0) return false;
   }
-  if (all) return map;
-  map.fill(-1);
+  return true;
+}
 
+// Pelvis, neck, head and the limbs of both sides, by name.
+void map_named(const Bvh& bvh, const std::vector<std::string>& norm, JointMap& map) {
   map[kPelvis] = pick(bvh, norm, {"hips", "hip", "pelvis", "root"}, -1);
-  if (map[kPelvis] >= 0) {
-    map[kNeck] =
-        pick(bvh, norm, {"neck", "necktwist01", "neck01", "neck1", "lowerneck"}, map[kPelvis]);
-    if (map[kNeck] >= 0) map[kHead] = pick(bvh, norm, {"head"}, map[kNeck]);
-    for (const SideNames& limb : limb_names()) {
-      std::vector<std::string> right;
-      for (const std::string& n : limb.names) right.push_back(to_right(n));
-      for (int side = 0; side < 2; ++side) {
-        const int joint = side == 0 ? limb.joint : mirror(limb.joint);
-        const int parent = joint_parent(joint);
-        // Arms hang from the chest, chosen below: any joint under the pelvis.
-        const int ancestor =
-            (joint == kLeftShoulder || joint == kRightShoulder) ? map[kPelvis] : map[parent];
-        if (ancestor < 0) continue;
-        map[joint] = pick(bvh, norm, side == 0 ? limb.names : right, ancestor);
-      }
+  if (map[kPelvis] < 0) return;
+  map[kNeck] = pick(bvh, norm, {"neck", "necktwist01", "neck01", "neck1", "lowerneck"}, map[kPelvis]);
+  if (map[kNeck] >= 0) map[kHead] = pick(bvh, norm, {"head"}, map[kNeck]);
+  for (const SideNames& limb : limb_names()) {
+    std::vector<std::string> right;
+    for (const std::string& n : limb.names) right.push_back(to_right(n));
+    for (int side = 0; side < 2; ++side) {
+      const int joint = side == 0 ? limb.joint : mirror(limb.joint);
+      const int parent = joint_parent(joint);
+      // Arms hang from the chest, chosen below: any joint under the pelvis.
+      const int ancestor = (joint == kLeftShoulder || joint == kRightShoulder) ? map[kPelvis] : map[parent];
+      if (ancestor < 0) continue;
+      map[joint] = pick(bvh, norm, side == 0 ? limb.names : right, ancestor);
     }
   }
+}
 
-  // Spine and chest: on the chain strictly between pelvis and neck.
-  if (map[kPelvis] >= 0 && map[kNeck] >= 0) {
-    std::vector<int> chain;  // neck's ancestors up to (not incl.) the pelvis, top-down
-    for (int p = bvh.joints[std::size_t(map[kNeck])].parent; p >= 0 && p != map[kPelvis];
-         p = bvh.joints[std::size_t(p)].parent)
-      chain.insert(chain.begin(), p);
-    std::vector<double> along(chain.size());
-    double length = 0;
-    for (std::size_t i = 0; i < chain.size(); ++i) {
-      length += bvh.joints[std::size_t(chain[i])].offset.norm();
-      along[i] = length;
-    }
-    length += bvh.joints[std::size_t(map[kNeck])].offset.norm();
-    if (chain.size() == 1) {
-      map[kSpine] = map[kChest] = chain[0];
-    } else if (chain.size() >= 2 && length > 0) {
-      double best = std::numeric_limits<double>::infinity();
-      for (std::size_t a = 0; a < chain.size(); ++a)
-        for (std::size_t b = a + 1; b < chain.size(); ++b) {
-          const double cost = std::abs(along[a] / length - kSpineFraction) +
-                              std::abs(along[b] / length - kChestFraction);
-          if (cost < best - 1e-12) {
-            best = cost;
-            map[kSpine] = chain[a];
-            map[kChest] = chain[b];
-          }
+// Spine and chest: on the chain strictly between pelvis and neck, nearest
+// the anthropometric fractions of its length; shoulders must hang from them.
+void map_spine(const Bvh& bvh, JointMap& map) {
+  if (map[kPelvis] < 0 || map[kNeck] < 0) return;
+  std::vector<int> chain;  // neck's ancestors up to (not incl.) the pelvis, top-down
+  for (int p = bvh.joints[std::size_t(map[kNeck])].parent; p >= 0 && p != map[kPelvis];
+       p = bvh.joints[std::size_t(p)].parent)
+    chain.insert(chain.begin(), p);
+  std::vector<double> along(chain.size());
+  double length = 0;
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    length += bvh.joints[std::size_t(chain[i])].offset.norm();
+    along[i] = length;
+  }
+  length += bvh.joints[std::size_t(map[kNeck])].offset.norm();
+  if (chain.size() == 1) {
+    map[kSpine] = map[kChest] = chain[0];
+  } else if (chain.size() >= 2 && length > 0) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < chain.size(); ++a)
+      for (std::size_t b = a + 1; b < chain.size(); ++b) {
+        const double cost =
+            std::abs(along[a] / length - kSpineFraction) + std::abs(along[b] / length - kChestFraction);
+        if (cost < best - 1e-12) {
+          best = cost;
+          map[kSpine] = chain[a];
+          map[kChest] = chain[b];
         }
-    }
-    // Shoulders must hang from the chest (or the chain above it).
-    for (int joint : {kLeftShoulder, kRightShoulder})
-      if (map[joint] >= 0 && map[kChest] >= 0 && !descends(bvh, map[joint], map[kChest]) &&
-          !descends(bvh, map[joint], map[kSpine]))
-        map[joint] = -1;
+      }
   }
+  for (int joint : {kLeftShoulder, kRightShoulder})
+    if (map[joint] >= 0 && map[kChest] >= 0 && !descends(bvh, map[joint], map[kChest]) &&
+        !descends(bvh, map[joint], map[kSpine]))
+      map[joint] = -1;
+}
 
+// Throws Error naming the joints not mapped and the joints found.
+void check_complete(const Bvh& bvh, const JointMap& map) {
   std::string missing;
   for (int k = 0; k < kJointCount; ++k)
-    if (map[std::size_t(k)] < 0)
-      missing += (missing.empty() ? "" : ", ") + std::string(kNames[std::size_t(k)]);
-  if (!missing.empty()) {
-    std::string found;
-    for (const BvhJoint& j : bvh.joints) found += (found.empty() ? "" : " ") + j.name;
-    throw Error::in(
-        bvh.source.empty() ? "BVH" : bvh.source,
-        "cannot map to the canonical joints: missing " + missing + "; joints found: " + found);
-  }
+    if (map[std::size_t(k)] < 0) missing += (missing.empty() ? "" : ", ") + std::string(kNames[std::size_t(k)]);
+  if (missing.empty()) return;
+  std::string found;
+  for (const BvhJoint& j : bvh.joints) found += (found.empty() ? "" : " ") + j.name;
+  throw Error::in(bvh.source.empty() ? "BVH" : bvh.source,
+                  "cannot map to the canonical joints: missing " + missing + "; joints found: " + found);
+}
+
+}  // namespace
+
+std::array<int, kJointCount> map_canonical(const Bvh& bvh) {
+  std::vector<std::string> norm;
+  for (const BvhJoint& j : bvh.joints) norm.push_back(normalise(j.name));
+  JointMap map;
+  if (map_own_names(norm, map)) return map;
+  map.fill(-1);
+  map_named(bvh, norm, map);
+  map_spine(bvh, map);
+  check_complete(bvh, map);
   return map;
 }
 

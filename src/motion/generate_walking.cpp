@@ -57,48 +57,66 @@ void walking_upper_body(const Style& st, double h, double step_len, rig::Control
   }
 }
 
-Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
-  // Per-take variation around the performer's style.
-  Style st = style;
+namespace {
+
+// One take's walk: the style varied, step sizes, and the footprints and
+// pelvis path that the frames are evaluated from.
+struct WalkPlan {
+  Style st;
+  double h = 0, step_time = 0, step_len = 0, half_width = 0, sway = 0, toe_front = 0;
+  FootTrack feet[2];
+  rig::Spline pelvis;  // (x, y, yaw)
+};
+
+// Per-take variation around the performer's style (the first draws of `rng`).
+WalkPlan vary(const Style& style, rig::Rng& rng) {
+  WalkPlan w;
+  Style& st = w.st;
+  st = style;
   st.heel_strike *= rng.uniform(0.85, 1.15);
   st.toe_off *= rng.uniform(0.9, 1.1);
   st.trunk_lean += deg(rng.uniform(-1.5, 1.5));
   st.arm_swing *= rng.uniform(0.8, 1.25);
-  const double h = st.height_m;
-  const double step_time = 1 / (st.cadence * rng.uniform(0.97, 1.03));
-  const double step_len = 0.5 * st.stride * h * rng.uniform(0.95, 1.04);
-  const double half_width = 0.5 * st.step_width * h;
-  const double sway = st.sway * h;
-  const double toe_front = rig::kToeTipPoint.x() * h;
+  w.h = st.height_m;
+  w.step_time = 1 / (st.cadence * rng.uniform(0.97, 1.03));
+  w.step_len = 0.5 * st.stride * w.h * rng.uniform(0.95, 1.04);
+  w.half_width = 0.5 * st.step_width * w.h;
+  w.sway = st.sway * w.h;
+  w.toe_front = rig::kToeTipPoint.x() * w.h;
+  return w;
+}
 
-  // Start near one end of the mat, facing the other.
+Plant footprint(const WalkPlan& w, int s, const Vector2d& centre, double heading_yaw) {
+  const double sgn = s == 0 ? 1.0 : -1.0;
+  Plant p;
+  p.xy = centre + rotate(heading_yaw, {0, sgn * w.half_width});
+  p.yaw = heading_yaw + sgn * w.st.toe_out;
+  return p;
+}
+
+// The steps: start near one end of the mat, facing the other; full steps
+// while they fit, one shortened step up to the end, a two-step turn; until
+// `seconds` are covered.
+void plan_steps(WalkPlan& w, rig::Rng& rng, double seconds) {
+  const Style& st = w.st;
+  const double h = w.h, step_time = w.step_time, step_len = w.step_len;
   double yaw = rng.chance(0.5) ? 0.0 : rig::kPi;
   Vector2d c(-std::cos(yaw) * rng.uniform(0.3, 0.45), rng.uniform(-0.04, 0.04));
   int side = rng.chance(0.5) ? 0 : 1;  // first swing foot, 0 = left
-  FootTrack feet[2];
-  auto footprint = [&](int s, const Vector2d& centre, double heading_yaw) {
-    const double sgn = s == 0 ? 1.0 : -1.0;
-    Plant p;
-    p.xy = centre + rotate(heading_yaw, {0, sgn * half_width});
-    p.yaw = heading_yaw + sgn * st.toe_out;
-    return p;
-  };
   // Quiet standing before the first step: feet under the hip joints (+/- 0.0475 H;
   // preferred stance width ~17 cm between heel centres, McIlroy & Maki 1997),
   // wider than the walking step width.
   for (int s = 0; s < 2; ++s) {
-    Plant p = footprint(s, c, yaw);
+    Plant p = footprint(w, s, c, yaw);
     p.xy = c + rotate(yaw, {0, (s == 0 ? 1.0 : -1.0) * 0.0475 * h});
-    feet[s].plants.push_back(p);
+    w.feet[s].plants.push_back(p);
   }
-
-  rig::Spline pelvis;  // (x, y, yaw)
-  pelvis.add(0, {c.x(), c.y(), yaw});
+  w.pelvis.add(0, {c.x(), c.y(), yaw});
   double lift = rng.uniform(0.3, 0.6);
   {
     const double sgn = side == 0 ? -1.0 : 1.0;  // weight onto the stance foot first
-    const Vector2d p = c + rotate(yaw, {0, sgn * sway});
-    pelvis.add(lift + 0.4 * step_time, {p.x(), p.y(), yaw});
+    const Vector2d p = c + rotate(yaw, {0, sgn * w.sway});
+    w.pelvis.add(lift + 0.4 * step_time, {p.x(), p.y(), yaw});
   }
   int turn_left = 0, turn_dir = 1;
   bool after_turn = false;  // the first step out of a turn (or from standing) is short
@@ -116,8 +134,8 @@ Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
     } else {
       // Full steps while they fit on the mat, then one shortened step up to
       // its end (unless tiny), then turn.
-      const double reach = fwd.x() > 0 ? (kMatHalfLength - toe_front) - c.x()
-                                       : c.x() - (-kMatHalfLength + toe_front);
+      const double reach = fwd.x() > 0 ? (kMatHalfLength - w.toe_front) - c.x()
+                                       : c.x() - (-kMatHalfLength + w.toe_front);
       const double len = std::min(k == 0 || after_turn ? 0.55 * step_len : step_len, reach);
       if (k > 0 && len < 0.4 * step_len) {
         // Step turn: open towards the stepping foot, 2 x 90 degrees.
@@ -134,25 +152,30 @@ Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
       }
     }
     yaw = rig::wrap_angle(yaw);
-    Plant p = footprint(side, c, yaw);
+    Plant p = footprint(w, side, c, yaw);
     p.lift = lift;
     p.land = lift + kSwingFraction * step_time;
     p.land_pitch = turning ? 0.4 * st.heel_strike : st.heel_strike;
     p.rocker = 0.15 * kStanceFraction * step_time;
     p.clearance = 0.02 * h;
     p.rise = 0.5 * kStanceFraction * step_time;
-    Plant& before = feet[side].plants.back();
+    Plant& before = w.feet[side].plants.back();
     before.leave_pitch = turning ? 0.5 * st.toe_off : st.toe_off;
     before.rise = p.rise;
-    feet[side].plants.push_back(p);
+    w.feet[side].plants.push_back(p);
 
     const double sgn = side == 0 ? 1.0 : -1.0;
-    const Vector2d q = c + rotate(yaw, {0, sgn * sway});
-    pelvis.add(p.land + 0.6 * step_time, {q.x(), q.y(), unwrapped});
+    const Vector2d q = c + rotate(yaw, {0, sgn * w.sway});
+    w.pelvis.add(p.land + 0.6 * step_time, {q.x(), q.y(), unwrapped});
     lift = p.land + (kStanceFraction - 1) * step_time;  // double support
     side = 1 - side;
   }
+}
 
+// The frames: feet on their tracks, pelvis on its path, the upper body from both.
+Clip render(const WalkPlan& w, double seconds, double fps) {
+  const Style& st = w.st;
+  const double h = w.h;
   Clip clip;
   clip.h = h;
   clip.fps = fps;
@@ -163,16 +186,24 @@ Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
     rig::Controls c;
     double swing[2];
     for (int s = 0; s < 2; ++s) {
-      c.foot[s] = feet[s].at(t, h);
-      swing[s] = feet[s].swing_activity(t, 0.05);
+      c.foot[s] = w.feet[s].at(t, h);
+      swing[s] = w.feet[s].swing_activity(t, 0.05);
     }
-    const Vector3d pv = pelvis(t);
+    const Vector3d pv = w.pelvis(t);
     c.pelvis = {pv.x(), pv.y(), hip_z};
-    walking_upper_body(st, h, step_len, c, pv.z(), swing, 1.0);
+    walking_upper_body(st, h, w.step_len, c, pv.z(), swing, 1.0);
     clip.controls.push_back(c);
     clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.015) * h);  // stance knee ~15 deg
   }
   return clip;
+}
+
+}  // namespace
+
+Clip walking(const Style& style, rig::Rng& rng, double seconds, double fps) {
+  WalkPlan w = vary(style, rng);
+  plan_steps(w, rng, seconds);
+  return render(w, seconds, fps);
 }
 
 }  // namespace ptnet::gen

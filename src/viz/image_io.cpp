@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
@@ -62,6 +63,61 @@ struct GifCloser {
     if (gif) EGifCloseFile(gif, &err);
   }
 };
+
+// Palette: the exact colours used (figures use few), else nearest of the first 256.
+class GifPalette {
+ public:
+  explicit GifPalette(const std::vector<Image>& frames) {
+    for (const auto& f : frames)
+      for (size_t i = 0; i < f.rgb.size(); i += 3) {
+        auto k = key(&f.rgb[i]);
+        if (!index_.count(k) && colours_.size() < 256) {
+          index_[k] = int(colours_.size());
+          colours_.push_back(GifColorType{f.rgb[i], f.rgb[i + 1], f.rgb[i + 2]});
+        }
+      }
+    while (colours_.size() < 256) colours_.push_back(GifColorType{0, 0, 0});
+  }
+  GifColorType* colours() { return colours_.data(); }
+  // Palette index of the pixel at p (RGB).
+  int lookup(const std::uint8_t* p) {
+    auto k = key(p);
+    auto it = index_.find(k);
+    if (it != index_.end()) return it->second;
+    auto [c, inserted] = nearest_.emplace(k, 0);
+    if (inserted) {
+      int best = 0, best_d = 1 << 30;
+      for (size_t j = 0; j < colours_.size(); ++j) {
+        int dr = colours_[j].Red - p[0], dg = colours_[j].Green - p[1], db = colours_[j].Blue - p[2];
+        int d = dr * dr + dg * dg + db * db;
+        if (d < best_d) best_d = d, best = int(j);
+      }
+      c->second = best;
+    }
+    return c->second;
+  }
+
+ private:
+  std::map<std::uint32_t, int> index_, nearest_;
+  std::vector<GifColorType> colours_;
+};
+
+// The rectangle [x0, x1] x [y0, y1] of `img` that differs from `prev`; one
+// pixel for identical frames.
+std::array<int, 4> changed_rect(const Image& img, const Image& prev) {
+  const int w = img.width, h = img.height;
+  int x0 = w, y0 = h, x1 = -1, y1 = -1;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      size_t i = (size_t(y) * w + x) * 3;
+      if (img.rgb[i] != prev.rgb[i] || img.rgb[i + 1] != prev.rgb[i + 1] || img.rgb[i + 2] != prev.rgb[i + 2]) {
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+    }
+  if (x1 < 0) x0 = y0 = x1 = y1 = 0;  // identical frame: one pixel
+  return {x0, y0, x1, y1};
+}
+
 }  // namespace
 
 void write_gif(const std::string& path, const std::vector<Image>& frames,
@@ -71,36 +127,7 @@ void write_gif(const std::string& path, const std::vector<Image>& frames,
   const int w = frames[0].width, h = frames[0].height;
   for (const auto& f : frames)
     if (f.width != w || f.height != h) throw Error::in(path, "GIF frames differ in size");
-
-  // Palette: the exact colours used (figures use few), else nearest of the first 256.
-  std::map<std::uint32_t, int> index;
-  std::vector<GifColorType> colours;
-  for (const auto& f : frames)
-    for (size_t i = 0; i < f.rgb.size(); i += 3) {
-      auto k = key(&f.rgb[i]);
-      if (!index.count(k) && colours.size() < 256) {
-        index[k] = int(colours.size());
-        colours.push_back(GifColorType{f.rgb[i], f.rgb[i + 1], f.rgb[i + 2]});
-      }
-    }
-  std::map<std::uint32_t, int> nearest_cache;
-  auto lookup = [&](const std::uint8_t* p) {
-    auto k = key(p);
-    auto it = index.find(k);
-    if (it != index.end()) return it->second;
-    auto [c, inserted] = nearest_cache.emplace(k, 0);
-    if (inserted) {
-      int best = 0, best_d = 1 << 30;
-      for (size_t j = 0; j < colours.size(); ++j) {
-        int dr = colours[j].Red - p[0], dg = colours[j].Green - p[1], db = colours[j].Blue - p[2];
-        int d = dr * dr + dg * dg + db * db;
-        if (d < best_d) best_d = d, best = int(j);
-      }
-      c->second = best;
-    }
-    return c->second;
-  };
-  while (colours.size() < 256) colours.push_back(GifColorType{0, 0, 0});
+  GifPalette palette(frames);
 
   AtomicFile out(path, force);
   int err = 0;
@@ -113,7 +140,7 @@ void write_gif(const std::string& path, const std::vector<Image>& frames,
     throw Error::in(path, std::string("GIF ") + what + " failed: " + GifErrorString(g.gif->Error));
   };
   EGifSetGifVersion(g.gif, true);
-  ColorMapObject* cmap = GifMakeMapObject(256, colours.data());
+  ColorMapObject* cmap = GifMakeMapObject(256, palette.colours());
   int rc = EGifPutScreenDesc(g.gif, w, h, 8, 0, cmap);
   GifFreeMapObject(cmap);
   if (rc == GIF_ERROR) fail("screen descriptor");
@@ -128,19 +155,7 @@ void write_gif(const std::string& path, const std::vector<Image>& frames,
   for (size_t f = 0; f < frames.size(); ++f) {
     const Image& img = frames[f];
     // Only the rectangle that changed since the previous frame is stored.
-    int x0 = 0, y0 = 0, x1 = w - 1, y1 = h - 1;
-    if (f > 0) {
-      const Image& prev = frames[f - 1];
-      x0 = w, y0 = h, x1 = -1, y1 = -1;
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-          size_t i = (size_t(y) * w + x) * 3;
-          if (img.rgb[i] != prev.rgb[i] || img.rgb[i + 1] != prev.rgb[i + 1] || img.rgb[i + 2] != prev.rgb[i + 2]) {
-            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
-          }
-        }
-      if (x1 < 0) x0 = y0 = x1 = y1 = 0;  // identical frame: one pixel
-    }
+    const auto [x0, y0, x1, y1] = f > 0 ? changed_rect(img, frames[f - 1]) : std::array<int, 4>{0, 0, w - 1, h - 1};
     GraphicsControlBlock gcb{};
     gcb.DisposalMode = DISPOSE_DO_NOT;
     gcb.UserInputFlag = false;
@@ -152,7 +167,7 @@ void write_gif(const std::string& path, const std::vector<Image>& frames,
     const int rw = x1 - x0 + 1, rh = y1 - y0 + 1;
     if (EGifPutImageDesc(g.gif, x0, y0, rw, rh, false, nullptr) == GIF_ERROR) fail("image descriptor");
     for (int y = y0; y <= y1; ++y) {
-      for (int x = x0; x <= x1; ++x) line[x - x0] = GifPixelType(lookup(&img.rgb[(size_t(y) * w + x) * 3]));
+      for (int x = x0; x <= x1; ++x) line[x - x0] = GifPixelType(palette.lookup(&img.rgb[(size_t(y) * w + x) * 3]));
       if (EGifPutLine(g.gif, line.data(), rw) == GIF_ERROR) fail("write");
     }
   }
