@@ -16,6 +16,7 @@ struct TrainCli {
   std::string data, out, preset = "paper", device = "cpu", arch, align, channels, loss, init;
   int epochs = 0, batch = 0, micro_batch = 0, patience = 0, threads = -1, stride = 0, hidden = 0, latent = 0;
   int window = 0, context = -1, crop_rows = -1;
+  double contact_weight = -1;
   int lr_halve_every = 0;
   long long samples_per_epoch = -1, val_samples = -1;
   double lr = 0, cache_mb = 0;
@@ -69,6 +70,9 @@ void run(const TrainCli& c) {
   if (c.latent) o.model.latent = c.latent;
   if (c.window) o.model.window = c.window;
   if (c.context >= 0) o.model.context = c.context;
+  if (o.model.arch != Arch::frame) o.contact_weight = 0;  // the contact head is the frame network's
+  if (c.contact_weight >= 0) o.contact_weight = c.contact_weight;
+  o.model.contact = o.contact_weight > 0;
   if (c.crop_rows >= 0) o.crop_rows = c.crop_rows;
   if (!c.loss.empty()) {
     if (c.loss == "mse") o.loss = Loss::mse;
@@ -136,6 +140,9 @@ void setup(CLI::App& app) {
   cmd->add_option("--crop-rows", opt->crop_rows,
                   "--arch frame: train on this many mat rows around the pressure (0 = whole mat)")
       ->check(CLI::Range(0, 1 << 24));
+  cmd->add_option("--contact-weight", opt->contact_weight,
+                  "--arch frame: weight of the contact head's cross-entropy (0 = no contact head)")
+      ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--loss", opt->loss, "mse (the paper's content loss) | mse+force (adds total-force error)");
   cmd->add_option("--cache-mb", opt->cache_mb, "Budget of the whole-sequence cache (default 1024)")
       ->check(positive(1e7));

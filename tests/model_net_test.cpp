@@ -53,6 +53,8 @@ TEST(ModelNet, ParameterCountMatchesClosedForm) {
   ModelConfig with_context = small(Arch::frame);
   with_context.context = 2;
   EXPECT_EQ(parameter_count(*PressureTransferNet(with_context)), parameter_count(with_context));
+  with_context.contact = true;
+  EXPECT_EQ(parameter_count(*PressureTransferNet(with_context)), parameter_count(with_context));
   // The paper's widths (64/128/256, 128, 128): 30x64x9+64 + ... (see model_config.cpp).
   ModelConfig paper = ModelConfig::paper();
   PressureTransferNet net(paper);
@@ -143,10 +145,17 @@ TEST(ModelNet, ConfigValidation) {
   ModelConfig f = small(Arch::frame);
   f.context = 3;
   f.window = 1;
+  f.contact = true;
   const ModelConfig back = model_config_from_json(to_json(f), "config.json");
   EXPECT_EQ(back.arch, Arch::frame);
   EXPECT_EQ(back.context, 3);
   EXPECT_EQ(back.window, 1);
+  EXPECT_TRUE(back.contact);
+  auto no_head = to_json(f);
+  no_head.erase("contact");  // config.json of a model from before the contact head
+  EXPECT_FALSE(model_config_from_json(no_head, "config.json").contact);
+  no_head["contact"] = 1;
+  EXPECT_THROW(model_config_from_json(no_head, "config.json"), Error);
   f.context = -1;
   EXPECT_THROW(validate(f), Error);
 }
@@ -195,6 +204,48 @@ TEST(ModelNet, FrameArchIsPerFrameAndStartsAsItsInput) {
   n3->eval();
   auto middle = n3->forward_raw(x.narrow(1, 1, 3), a, a.flip(0)).narrow(1, 1, 1);
   EXPECT_LT((middle - inner.narrow(1, 1, 1)).abs().max().item<float>(), 1e-5f);
+}
+
+TEST(ModelNet, ContactHeadZeroesCellsOutOfContactAndLiftsTheRest) {
+  // The output of a contact-head model is 0 where the contact logit is < 0
+  // and at least the floor where it is > 0; the pressure channel is the same
+  // as without the head. Untrained, the logit is -2 everywhere: no contact.
+  torch::manual_seed(5);
+  ModelConfig c = small(Arch::frame);
+  c.window = 2;
+  c.contact = true;
+  PressureTransferNet net(c);
+  net->set_contact_floor(0.25);
+  net->eval();
+  torch::NoGradGuard no_grad;
+  auto x = torch::rand({2, 2, 80, 28});
+  auto a = torch::randn({2, 3});
+  auto raw = net->forward_parts(x, a, a.flip(0));
+  ASSERT_TRUE(raw.contact.defined());
+  EXPECT_EQ(raw.contact.sizes(), x.sizes());
+  EXPECT_EQ(net->forward(x, a, a.flip(0)).abs().max().item<float>(), 0.0f);  // no contact yet
+  // Contact where the input is above 0.5: there the output is max(x, 0.25).
+  raw.contact = (x > 0.5).to(torch::kFloat) * 2 - 1;
+  auto y = net->contact_output(raw);
+  EXPECT_EQ(y.masked_select(x <= 0.5).abs().max().item<float>(), 0.0f);
+  EXPECT_LT((y - torch::where(x > 0.5, x.clamp_min(0.25), torch::zeros_like(x))).abs().max().item<float>(), 1e-6f);
+  // The floor is a buffer: it travels with the weights.
+  std::stringstream buf;
+  {
+    torch::serialize::OutputArchive ar;
+    write_weights(net, ar);
+    ar.save_to(buf);
+  }
+  PressureTransferNet copy(c);
+  torch::serialize::InputArchive in;
+  in.load_from(buf);
+  read_weights(copy, in, "memory");
+  copy->eval();
+  EXPECT_EQ((copy->contact_output(raw) - y).abs().max().item<float>(), 0.0f);
+  // Only the frame network has a contact head.
+  ModelConfig bad = small(Arch::residual);
+  bad.contact = true;
+  EXPECT_THROW(validate(bad), Error);
 }
 
 TEST(ModelNet, ResidualWithAZeroDecoderCopiesTheSource) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -43,7 +44,8 @@ TEST(TrainLearn, FastPresetArchitectureBeatsBodyScaleOnAHeldOutBody) {
   // Trained on the retargeted bodies, it must beat that starting point (the
   // body-scale baseline) and copying by a margin on the validation windows,
   // and on a body it never saw: every retargeted body -> the original body,
-  // on the seen motions and on the unseen (take-2) motion.
+  // on the seen motions and on the unseen (take-2) motion, in RMSE and, with
+  // its contact head, in binary R^2.
   const TrainOptions fast = TrainOptions::from_preset("fast");
   ASSERT_EQ(fast.model.arch, Arch::frame);
   ASSERT_EQ(fast.model.align, Align::zoom);
@@ -51,6 +53,9 @@ TEST(TrainLearn, FastPresetArchitectureBeatsBodyScaleOnAHeldOutBody) {
   fs::path dir = temp_dir("frame");
   TrainOptions o = synth_options(8, Arch::frame, Align::zoom);
   o.model.window = fast.model.window;
+  ASSERT_TRUE(fast.model.contact);
+  o.model.contact = fast.model.contact;
+  o.contact_weight = fast.contact_weight;
   o.samples_per_epoch = 1024;
   o.val_samples = 512;
   TrainResult r = train(src, dir.string(), o);
@@ -63,7 +68,8 @@ TEST(TrainLearn, FastPresetArchitectureBeatsBodyScaleOnAHeldOutBody) {
   Transfer transfer(dir.string());
   const BodySpec& held_out = src.body("orig");
   for (int take : {1, 2}) {
-    double err_model = 0, err_scale = 0;
+    double err_model = 0, err_scale = 0, r2_model = 0, r2_scale = 0;
+    int n = 0;
     for (const auto& meta : src.sequences()) {
       if (meta.body_id == "orig" || meta.take != take) continue;
       const BodySpec& from = src.body(meta.body_id);
@@ -73,8 +79,14 @@ TEST(TrainLearn, FastPresetArchitectureBeatsBodyScaleOnAHeldOutBody) {
       const PressureSequence scaled = body_scale_baseline(in, from, held_out);
       err_model += rmse(out.kpa.data(), truth.kpa.data(), truth.kpa.size());
       err_scale += rmse(scaled.kpa.data(), truth.kpa.data(), truth.kpa.size());
+      r2_model += binary_r2(out.kpa.data(), truth.kpa.data(), truth.kpa.size(), kContactKpa);
+      r2_scale += binary_r2(scaled.kpa.data(), truth.kpa.data(), truth.kpa.size(), kContactKpa);
+      ++n;
     }
+    ASSERT_GT(n, 0);
     EXPECT_LT(err_model, 0.75 * err_scale) << "take " << take;
+    // Mean binary R^2 (measured: 0.98 / 0.96 against body scale's 0.48).
+    EXPECT_GT(r2_model / n, r2_scale / n + 0.25) << "take " << take;
   }
   fs::remove_all(dir);
 }

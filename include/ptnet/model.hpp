@@ -27,7 +27,9 @@
 // and target attributes, so the body attributes act at every scale:
 //   enc0 K->C1 (H x W), pool, enc1 C1->C2 (H1 x W1), pool, enc2 C2->C3 and
 //   mid C3->C3 (H2 x W2); dec1: upsample, 1x1 C3->C2 + enc1, C2->C2;
-//   dec0: upsample, 1x1 C2->C1 + enc0, C1->C1; head 3x3 C1->1 (zero-init).
+//   dec0: upsample, 1x1 C2->C1 + enc0, C1->C1; head 3x3 C1->1 (zero-init),
+//   or C1->2 with a contact head (ModelConfig::contact): the second channel
+//   is the logit that the cell is in contact.
 //
 // Only the model and train stages include this header (it pulls in Torch).
 #pragma once
@@ -42,7 +44,8 @@ namespace ptnet {
 
 // Arch::frame's network: frames [M, K, H, W] (K = 1 + 2 context, the centre
 // frame in the middle), conditions [M, 2A] (source, target attributes) ->
-// correction [M, 1, H, W] (normalised pressure, any sign).
+// [M, 1 + contact, H, W]: the correction (normalised pressure, any sign) and,
+// with a contact head, the contact logit.
 class FrameNetImpl : public torch::nn::Module {
  public:
   explicit FrameNetImpl(const ModelConfig& config);
@@ -73,6 +76,18 @@ class PressureTransferNetImpl : public torch::nn::Module {
   // output is clamped at 0 (a plain ReLU output dies on sparse maps).
   torch::Tensor forward_raw(const torch::Tensor& x, const torch::Tensor& source,
                             const torch::Tensor& target);
+  // forward_raw and, with a contact head, the contact logits [N, T, H, W]
+  // (undefined without one): what training needs for both losses.
+  struct Raw {
+    torch::Tensor pressure, contact;
+  };
+  Raw forward_parts(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target);
+  // The output of a contact-head model: 0 where `contact` < 0, else
+  // max(ReLU(pressure), contact_floor) (forward() = this of forward_parts()).
+  torch::Tensor contact_output(const Raw& raw) const;
+  // The smallest pressure (normalised) a contact cell is given: the training
+  // data's smallest reading, set by training and stored with the weights.
+  void set_contact_floor(double floor);
 
   const ModelConfig& config() const { return config_; }
 
@@ -85,6 +100,7 @@ class PressureTransferNetImpl : public torch::nn::Module {
   torch::nn::ConvTranspose2d deconv3, deconv2, deconv1;
   torch::nn::BatchNorm2d dbn3, dbn2;
   FrameNet frame{nullptr};  // Arch::frame only (the layers above are then empty)
+  torch::Tensor contact_floor_;  // buffer "contact_floor" (contact head only): scalar, normalised
 };
 TORCH_MODULE(PressureTransferNet);
 

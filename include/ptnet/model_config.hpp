@@ -49,7 +49,8 @@ inline constexpr std::uint64_t kMaxConfigBytes = std::uint64_t(16) << 20;  // co
 // full resolution, the body attributes injected at every scale (FiLM); the
 // output is a correction added to the frame (zero-initialised). The window is
 // only a batch of frames to it: any window length works, so the fast preset
-// trains on single frames (window 1).
+// trains on single frames (window 1). With `contact` it also predicts which
+// cells are in contact (ModelConfig::contact).
 enum class Arch { faithful, skip, residual, frame };
 inline bool has_skips(Arch arch) { return arch == Arch::skip || arch == Arch::residual; }
 inline bool is_residual(Arch arch) { return arch == Arch::residual || arch == Arch::frame; }
@@ -75,6 +76,11 @@ struct ModelConfig {
   int hidden = kHidden;                    // FC after the flattened conv features
   int latent = kLatent;                    // FC after concatenating the source attributes
   int context = 0;                         // Arch::frame: neighbouring frames on each side as input
+  // Arch::frame: a second output channel, the logit of "this cell is in
+  // contact" (trained with a cross-entropy loss beside the pressure loss); the
+  // output is 0 where the logit is < 0 and at least the data's smallest
+  // reading (the sensor's activation threshold) where it is > 0.
+  bool contact = false;
   static ModelConfig paper() { return {}; }
   static ModelConfig fast() {
     ModelConfig c;
@@ -105,6 +111,9 @@ struct Normalisation {
   // activation threshold, fitted after training on the validation windows so
   // that the predicted contact area matches the truth's (docs/model.md).
   double contact_threshold_kpa = 0;
+  // The smallest non-zero reading of the training frames (kPa; the sensor's
+  // activation threshold): a contact-head model's smallest contact value.
+  double min_reading_kpa = 0;
   // {sex (0 female, 1 male), z-scored height, z-scored weight}
   std::array<float, 3> attributes(const BodySpec& body) const;
 };

@@ -112,6 +112,7 @@ struct TrainOptions {
   std::int64_t val_samples = 0;     // validation windows, evenly spaced (0 = all)
   Loss loss = Loss::mse;
   double force_weight = 0.1;        // weight of the total-force term (Loss::mse_force)
+  double contact_weight = 0;        // weight of the contact head's cross-entropy (model.contact)
   double cache_mb = 1024;           // whole-sequence cache budget
   int crop_rows = 0;                // Arch::frame: train on this many mat rows around the window's
                                     // pressure (0 = the whole mat); validation uses the whole mat.

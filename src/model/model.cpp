@@ -61,6 +61,7 @@ PressureTransferNetImpl::PressureTransferNetImpl(const ModelConfig& config)
       dbn2(layer<nn::BatchNorm2d>(config, config.channels[0])) {
   if (config.arch == Arch::frame) {
     frame = register_module("frame", FrameNet(config));
+    if (config.contact) contact_floor_ = register_buffer("contact_floor", torch::zeros({}));
     return;
   }
   register_module("conv1", conv1);
@@ -111,7 +112,7 @@ FrameNetImpl::FrameNetImpl(const ModelConfig& c) {
   }
   lateral1 = register_module("lateral1", nn::Conv2d(nn::Conv2dOptions(c.channels[2], c.channels[1], 1)));
   lateral0 = register_module("lateral0", nn::Conv2d(nn::Conv2dOptions(c.channels[1], c.channels[0], 1)));
-  head = register_module("head", nn::Conv2d(nn::Conv2dOptions(c.channels[0], 1, 3).padding(1)));
+  head = register_module("head", nn::Conv2d(nn::Conv2dOptions(c.channels[0], c.contact ? 2 : 1, 3).padding(1)));
   film1 = register_module("film1", nn::Linear(2 * kAttributes, c.hidden));
   film2 = register_module("film2", nn::Linear(c.hidden, film_width));
   pool = register_module("pool", nn::MaxPool2d(nn::MaxPool2dOptions(2).stride(2).ceil_mode(true)));
@@ -119,6 +120,7 @@ FrameNetImpl::FrameNetImpl(const ModelConfig& c) {
   torch::NoGradGuard no_grad;
   head->weight.zero_();
   head->bias.zero_();
+  if (c.contact) head->bias[1].fill_(-2.0);  // most cells of a mat are empty
   film2->weight.zero_();
   film2->bias.zero_();
 }
@@ -144,7 +146,7 @@ torch::Tensor FrameNetImpl::forward(const torch::Tensor& frames, const torch::Te
   auto m = block(3, e2, film);                                                // [M,C3,H2,W2]
   auto d1 = block(4, lateral1(up(m, e1)) + e1, film);                         // [M,C2,H1,W1]
   auto d0 = block(5, lateral0(up(d1, e0)) + e0, film);                        // [M,C1,H,W]
-  return head(d0);                                                            // [M,1,H,W]
+  return head(d0);                                                            // [M,1+contact,H,W]
 }
 
 // Frames of a window with their context as channels: x [N,T,H,W] ->
@@ -160,11 +162,29 @@ static torch::Tensor frames_with_context(const torch::Tensor& x, int context) {
 
 torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const torch::Tensor& source,
                                                const torch::Tensor& target) {
+  if (config_.contact) return contact_output(forward_parts(x, source, target));
   return torch::relu(forward_raw(x, source, target));  // [N,T,H,W] >= 0
+}
+
+torch::Tensor PressureTransferNetImpl::contact_output(const Raw& raw) const {
+  auto p = torch::clamp_min(torch::relu(raw.pressure), contact_floor_);
+  return torch::where(raw.contact > 0, p, torch::zeros_like(p));  // [N,T,H,W] >= 0
+}
+
+void PressureTransferNetImpl::set_contact_floor(double floor) {
+  TORCH_CHECK(config_.contact && std::isfinite(floor) && floor >= 0, "set_contact_floor: no contact head or bad floor");
+  torch::NoGradGuard no_grad;
+  contact_floor_.fill_(floor);
 }
 
 torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const torch::Tensor& source,
                                                    const torch::Tensor& target) {
+  return forward_parts(x, source, target).pressure;
+}
+
+PressureTransferNetImpl::Raw PressureTransferNetImpl::forward_parts(const torch::Tensor& x,
+                                                                    const torch::Tensor& source,
+                                                                    const torch::Tensor& target) {
   const auto& c = config_;
   // Arch::frame is fully convolutional and per frame: any number of frames and
   // any crop of the mat (training crops, whole sequences).
@@ -180,8 +200,11 @@ torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const
     // Each frame on its own; the attributes repeated for the window's frames.
     const auto t = x.size(1);
     auto conditions = torch::cat({source, target}, 1).repeat_interleave(t, 0);  // [N*T, 2A]
-    auto correction = frame(frames_with_context(x, c.context), conditions);      // [N*T,1,H,W]
-    return x + correction.view({n, t, x.size(2), x.size(3)});
+    auto out = frame(frames_with_context(x, c.context), conditions);             // [N*T,1+contact,H,W]
+    const std::vector<int64_t> shape{n, t, x.size(2), x.size(3)};
+    Raw r{x + out.select(1, 0).reshape(shape), torch::Tensor()};
+    if (c.contact) r.contact = out.select(1, 1).reshape(shape);
+    return r;
   }
   auto s0 = pooled_size(c, 0), s1 = pooled_size(c, 1), s2 = pooled_size(c, 2), s3 = pooled_size(c, 3);
 
@@ -208,7 +231,7 @@ torch::Tensor PressureTransferNetImpl::forward_raw(const torch::Tensor& x, const
   if (has_skips(c.arch)) d = torch::cat({d, e1}, 1);
   auto out = deconv1(d);                                             // [N,T,H,W] pre-activation
   if (is_residual(c.arch)) out = out + x;                       // a correction to the source
-  return out;
+  return {out, torch::Tensor()};
 }
 
 std::int64_t parameter_count(const torch::nn::Module& module) {

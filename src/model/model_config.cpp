@@ -53,6 +53,8 @@ void validate(const ModelConfig& c) {
   positive("latent", c.latent, 1 << 16);
   if (c.context < 0 || c.context > 16)
     throw Error("model: context must be in 0-16, found " + std::to_string(c.context));
+  if (c.contact && c.arch != Arch::frame)
+    throw Error(std::string("model: a contact head needs the frame architecture, found ") + arch_name(c.arch));
 }
 
 std::array<int, 2> pooled_size(const ModelConfig& c, int level) {
@@ -84,8 +86,9 @@ FrameCounts frame_counts(const ModelConfig& c) {
     f.macs_per_frame += at[i] * 9.0 * double(blocks[i][0] * blocks[i][1]);
     film += 2 * blocks[i][1];
   }
-  f.parameters += c3 * c2 + c2 + c2 * c1 + c1 + c1 * 9 + 1;                 // laterals, head
-  f.macs_per_frame += p1 * double(c3 * c2) + p0 * double(c2 * c1) + p0 * 9.0 * double(c1);
+  const I outputs = c.contact ? 2 : 1;                                      // pressure (+ contact logit)
+  f.parameters += c3 * c2 + c2 + c2 * c1 + c1 + outputs * (c1 * 9 + 1);     // laterals, head
+  f.macs_per_frame += p1 * double(c3 * c2) + p0 * double(c2 * c1) + p0 * 9.0 * double(c1 * outputs);
   const I conditions = 2 * kAttributes;
   f.parameters += conditions * I(c.hidden) + c.hidden + I(c.hidden) * film + film;  // FiLM MLP
   f.macs_per_frame += double(conditions) * c.hidden + double(c.hidden) * double(film);
@@ -145,7 +148,7 @@ std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
 json to_json(const ModelConfig& c) {
   return json{{"arch", arch_name(c.arch)}, {"align", align_name(c.align)}, {"window", c.window}, {"rows", c.rows},
               {"cols", c.cols}, {"channels", c.channels}, {"hidden", c.hidden},
-              {"latent", c.latent}, {"context", c.context}, {"attributes", kAttributes},
+              {"latent", c.latent}, {"context", c.context}, {"contact", c.contact}, {"attributes", kAttributes},
               {"output", "relu"}, {"pooling", "max 2x2 ceil, indices shared with the decoder"},
               {"parameters", parameter_count(c)}};
 }
@@ -175,6 +178,9 @@ T get(const json& j, const char* key, const std::string& where) {
       if (i >= -0x7fffffffLL && i <= 0x7fffffffLL) return int(i);
     }
     wrong(key, v, "an integer", where);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (!v.is_boolean()) wrong(key, v, "true or false", where);
+    return v.get<bool>();
   } else if constexpr (std::is_same_v<T, double>) {
     if (!v.is_number() || !std::isfinite(v.get<double>())) wrong(key, v, "a finite number", where);
     return v.get<double>();
@@ -214,6 +220,7 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   c.hidden = get<int>(j, "hidden", where);
   c.latent = get<int>(j, "latent", where);
   if (j.contains("context")) c.context = get<int>(j, "context", where);
+  if (j.contains("contact")) c.contact = get<bool>(j, "contact", where);
   try {
     validate(c);
   } catch (const Error& e) {
@@ -236,6 +243,7 @@ json to_json(const ModelDir& d) {
                 {"weight_mean_kg", d.norm.weight_mean_kg},
                 {"weight_std_kg", d.norm.weight_std_kg},
                 {"contact_threshold_kpa", d.norm.contact_threshold_kpa},
+                {"min_reading_kpa", d.norm.min_reading_kpa},
                 {"sex", "female 0, male 1"}}},
               {"data", d.data.is_null() ? json::object() : d.data},
               {"options", d.options.is_null() ? json::object() : d.options},
@@ -297,6 +305,8 @@ ModelDir parse_model_config(const std::string& text, const std::string& path, co
   if (n.contains("contact_threshold_kpa")) d.norm.contact_threshold_kpa = get<double>(n, "contact_threshold_kpa", path);
   if (!(d.norm.contact_threshold_kpa >= 0) || !std::isfinite(d.norm.contact_threshold_kpa))
     throw Error::in(path, "normalisation.contact_threshold_kpa must be >= 0");
+  if (n.contains("min_reading_kpa")) d.norm.min_reading_kpa = get<double>(n, "min_reading_kpa", path);
+  if (!(d.norm.min_reading_kpa >= 0)) throw Error::in(path, "normalisation.min_reading_kpa must be >= 0");
   for (double v : {d.norm.pressure_scale_kpa, d.norm.height_std_cm, d.norm.weight_std_kg})
     if (!(v > 0) || !std::isfinite(v)) throw Error::in(path, "normalisation scales must be > 0");
   if (j.contains("data")) d.data = j["data"];

@@ -162,6 +162,7 @@ Normalisation fit_normalisation(const PressureSource& source, const WindowIndex&
     base += seqs[s].frames;
   }
   if (!values.empty()) {
+    n.min_reading_kpa = *std::min_element(values.begin(), values.end());
     auto q = values.begin() + std::ptrdiff_t(double(values.size() - 1) * 0.999);
     std::nth_element(values.begin(), q, values.end());
     if (*q > 0 && std::isfinite(*q)) n.pressure_scale_kpa = *q;
