@@ -167,7 +167,7 @@ class SequenceCache {
 enum class Loss { mse, mse_force };  // mse_force adds a per-frame total-force term
 
 struct TrainOptions {
-  std::string preset = "paper";     // paper | fast (set by from_preset())
+  std::string preset = "paper";     // paper | fast | full (set by from_preset())
   ModelConfig model;                // window, rows and cols are taken from the data
   int epochs = 500;                 // maximum epochs
   int batch = 1028;                 // windows per optimiser step
@@ -207,6 +207,8 @@ struct TrainOptions {
   // input (--arch frame --align zoom --window 1), widths 16/32/48, FiLM MLP
   // 64, a contact head (cross-entropy weight 0.05), batch 64 frames on 40-row crops, lr 3e-3 halved every 4 epochs, 12
   // epochs of 8192 frames, 4096 validation frames, 1 thread.
+  // "full": fast's network trained longer: 30 epochs of 16384 frames, lr
+  // halved every 8 epochs, 8192 validation frames (~1 h on one core).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
   // One line naming the architecture and schedule ("frame 16/32/48 on zoom-aligned
   // input, window 1, batch 64, lr 0.003 halved every 4 epochs, ..."): the
