@@ -101,10 +101,11 @@ void setup(CLI::App& app) {
       "(on a terminal also a progress line inside each epoch: windows, windows/s, ETA).\n"
       "Presets:\n  paper = the paper's: " + TrainOptions::from_preset("paper").summary() +
       "\n  fast  = ours: " + TrainOptions::from_preset("fast").summary() +
+      "\n  full  = ours, longer: " + TrainOptions::from_preset("full").summary() +
       "\nOptions left out keep the preset's value.");
   cmd->add_option("--data", opt->data, "Dataset file (HDF5, ptnet simulate)")->required();
   cmd->add_option("--out", opt->out, "Model folder to create")->required();
-  cmd->add_option("--preset", opt->preset, "paper | fast")->capture_default_str();
+  cmd->add_option("--preset", opt->preset, "paper | fast | full")->capture_default_str();
   cmd->add_option("--epochs", opt->epochs, "Maximum epochs")->check(CLI::Range(1, 1000000));
   cmd->add_option("--batch", opt->batch, "Windows per optimiser step")->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--micro-batch", opt->micro_batch,

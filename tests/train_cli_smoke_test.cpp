@@ -108,7 +108,7 @@ TEST_F(CliSmoke, TrainThenTransferToNpyAndH5) {
   EXPECT_EQ(r.err, "ptnet: error: " + model + ": exists; pass --force to overwrite or --resume to continue\n");
   r = run("train --data " + data() + " --out " + model + " --preset quick");
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err, "ptnet: error: --preset: expected paper or fast, found \"quick\"\n");
+  EXPECT_EQ(r.err, "ptnet: error: --preset: expected paper, fast or full, found \"quick\"\n");
   r = run("train --data " + data());
   EXPECT_EQ(r.status, 2);  // usage error: --out missing
   fs::remove_all(dir_);

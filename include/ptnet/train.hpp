@@ -94,7 +94,7 @@ bool is_training_sequence(const BodySpec& body, const SequenceMeta& meta);
 enum class Loss { mse, mse_force };  // mse_force adds a per-frame total-force term
 
 struct TrainOptions {
-  std::string preset = "paper";     // paper | fast (set by from_preset())
+  std::string preset = "paper";     // paper | fast | full (set by from_preset())
   ModelConfig model;                // window, rows and cols are taken from the data
   int epochs = 500;                 // maximum epochs
   int batch = 1028;                 // windows per optimiser step
@@ -130,8 +130,9 @@ struct TrainOptions {
   ProgressFn progress;
 
   // "paper": the paper's network and schedule (the defaults above). "fast":
-  // ours, for two CPU cores. The values are set in one place, from_preset()
-  // (src/train/train.cpp); summary() describes them (`ptnet train --help`).
+  // ours, for two CPU cores; "full": the fast network trained longer. The
+  // values are set in one place, from_preset() (src/train/train.cpp);
+  // summary() describes them (`ptnet train --help`).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
   // One line naming the architecture and schedule ("frame 16/32/48 on zoom-aligned
   // input, window 1, batch 64, lr 0.003 halved every 4 epochs, ..."): the
