@@ -73,6 +73,7 @@ inline TrainOptions synth_options(int epochs = 6, Arch arch = Arch::faithful, Al
   o.model.arch = arch;
   o.model.align = align;
   o.model.window = arch == Arch::frame ? 1 : kWindowFrames;  // the frame network works per frame
+  o.model.contact = o.model.contact && arch == Arch::frame;  // the contact head is the frame network's
   o.model.channels = {4, 8, 8};
   o.model.hidden = 32;
   o.model.latent = 32;
