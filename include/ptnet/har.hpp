@@ -370,6 +370,10 @@ struct StandinOptions {
   double noise_sd_kpa = 0.6;      // (training default 0.2)
   double gain_sd = 0.15;          // sigma of the per-cell log-normal gain
   double dead_fraction = 0.01;    // cells that always read 0
+  // fixed: a physical 1.6 m mat (the procedural motions stay on it); follow:
+  // the mat follows the body (real clips walk, dribble and leap off a fixed
+  // mat: docs/har.md)
+  std::string placement = "fixed";
   std::uint64_t seed = 1;
   int threads = 0;                // simulation threads (0: all cores)
   ProgressFn progress;            // a line {"standin", line} per step, may be empty
