@@ -9,16 +9,22 @@
 using namespace ptnet::har;
 
 namespace {
-// Two Gaussian blobs of `per` points in 2-D, centres (0,0) and (10,0), sd 0.5.
-Eigen::MatrixXd two_blobs(int per, std::uint64_t seed) {
+// Gaussian blobs of `per` points each around the rows of centres [B, D], sd
+// 0.5; blob b in rows [b * per, (b + 1) * per).
+Eigen::MatrixXd blobs(const Eigen::MatrixXd& centres, int per, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> g(0.0, 0.5);
-  Eigen::MatrixXd x(2 * per, 2);
-  for (int i = 0; i < 2 * per; ++i) {
-    x(i, 0) = (i < per ? 0.0 : 10.0) + g(rng);
-    x(i, 1) = g(rng);
-  }
+  Eigen::MatrixXd x(centres.rows() * per, centres.cols());
+  for (int i = 0; i < x.rows(); ++i)
+    for (int j = 0; j < x.cols(); ++j) x(i, j) = centres(i / per, j) + g(rng);
   return x;
+}
+
+// Two blobs in 2-D, centres (0,0) and (10,0).
+Eigen::MatrixXd two_blobs(int per, std::uint64_t seed) {
+  Eigen::MatrixXd c(2, 2);
+  c << 0, 0, 10, 0;
+  return blobs(c, per, seed);
 }
 }  // namespace
 
@@ -65,19 +71,11 @@ TEST(HarMeanShift, BandwidthRuleIsDeterministicAndMatchesHandComputation) {
 }
 
 namespace {
-// Four Gaussian blobs of `per` points in 3-D at the corners of a square of
-// side 10 (z = 0), sd 0.5, blob b in rows [b * per, (b + 1) * per).
+// Four blobs in 3-D at the corners of a square of side 10 (z = 0).
 Eigen::MatrixXd four_blobs(int per, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 0.5);
-  Eigen::MatrixXd x(4 * per, 3);
-  for (int i = 0; i < 4 * per; ++i) {
-    const int b = i / per;
-    x(i, 0) = 10.0 * (b % 2) + g(rng);
-    x(i, 1) = 10.0 * (b / 2) + g(rng);
-    x(i, 2) = g(rng);
-  }
-  return x;
+  Eigen::MatrixXd c(4, 3);
+  c << 0, 0, 0, 10, 0, 0, 0, 10, 0, 10, 10, 0;
+  return blobs(c, per, seed);
 }
 
 std::vector<int> blob_of(int blobs, int per) {
