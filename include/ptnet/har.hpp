@@ -3,9 +3,11 @@
 //
 //   // the building blocks
 //   Eigen::MatrixXd f = ptnet::har::window_features(windows, mat);   // [N, F]
+//   ptnet::har::robust_standardise(f);                               // median/MAD, clipped
 //   ptnet::har::Pca pca = ptnet::har::Pca::fit(f, 4);                // standardise + PCA
 //   Eigen::MatrixXd z = pca.transform(f);                            // [N, 4]
-//   ptnet::har::MeanShiftResult ms = ptnet::har::mean_shift(z, {});  // pseudo labels
+//   ptnet::har::MeanShiftResult ms = ptnet::har::mean_shift(z, {});  // pseudo labels (bandwidth rule)
+//   double ari = ptnet::har::adjusted_rand_index(ms.labels, categories);
 //   ptnet::har::WindowClassifier net(shape, ms.clusters(), {});      // small CNN
 //   net.train(inputs, ms.labels);
 //   auto report = ptnet::har::classification_report(truth, net.predict(test), classes);
