@@ -49,6 +49,11 @@ void setup(CLI::App& app) {
   s->add_option("--noise", c->o.noise_sd_kpa, "Read noise sd (kPa)")->capture_default_str()->check(ptnet::cli::in_range(0, 50));
   s->add_option("--gain-sd", c->o.gain_sd, "Sigma of the per-cell log-normal gain")->capture_default_str()->check(ptnet::cli::in_range(0, 1));
   s->add_option("--dead", c->o.dead_fraction, "Fraction of dead cells")->capture_default_str()->check(ptnet::cli::in_range(0, 0.5));
+  s->add_option("--placement", c->o.placement,
+                "fixed: a physical 1.6 m mat; follow: the mat follows the body (real clips that walk "
+                "or leap off a fixed mat, docs/har.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fixed", "follow"}));
   s->add_option("--seed", c->o.seed, "Seed (bodies, motions, noise, gain map)")->capture_default_str();
   s->add_option("--threads", c->o.threads, "Simulation threads (0: all cores)")
       ->capture_default_str()

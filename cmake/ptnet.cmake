@@ -43,6 +43,7 @@ function(ptnet_test file)
   target_compile_definitions(${name} PRIVATE
     PTNET_TEST_DATA="${PROJECT_SOURCE_DIR}/tests/data"
     PTNET_SHARED_MOCAP="${PROJECT_SOURCE_DIR}/../shared/mocap"
+    PTNET_SHARED_CORPUS="${PROJECT_SOURCE_DIR}/../shared/mocap-corpus"
     PTNET_BINARY="$<TARGET_FILE:ptnet>")
   if(NOT T_LABELS)
     set(T_LABELS unit)

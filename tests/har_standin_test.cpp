@@ -1,6 +1,6 @@
 // The stand-in for real recordings: its degraded sensor (gain spread, dead
 // cells), the dataset it writes, and the mocap variant (one subject per CMU
-// subject of ../shared/mocap).
+// subject of ../shared/mocap and of the real-motion corpus ../shared/mocap-corpus).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -117,6 +117,69 @@ TEST(HarStandin, MocapClipsAreGroupedByCmuSubjectOnTheirOwnBodies) {
   // 14_06: 1440 motion frames at 120 Hz after the T-pose = 12 s -> 360 frames at 30 Hz.
   EXPECT_NEAR(d.sequence("standin_14_06__s14").frames, 360, 1);
   EXPECT_EQ(d.sequence("standin_14_06__s14").category, "rom");
+  fs::remove(path);
+}
+
+// The real-motion stand-in of docs/har.md: every clip of the 44-clip corpus
+// (../shared/mocap-corpus, 7 CMU performers) on its performer's own body.
+TEST(HarStandin, CorpusStandinHasOneSubjectPerCmuPerformerWithItsCategories) {
+  namespace fs = std::filesystem;
+  const fs::path corpus = PTNET_SHARED_CORPUS;
+  if (!fs::exists(corpus / "clips.csv"))
+    GTEST_SKIP() << corpus.string() << "/clips.csv not found: the real-motion corpus is not beside the source tree";
+  std::map<std::string, std::set<std::string>> expected;  // subject -> categories, from clips.csv
+  std::map<std::string, int> clips_of;
+  for (const auto& c : ptnet::read_clips_csv((corpus / "clips.csv").string())) {
+    expected["s" + c.subject].insert(c.category);
+    ++clips_of["s" + c.subject];
+  }
+  const std::string path = (fs::temp_directory_path() / ("ptnet_har_standin_corpus_test_" + std::to_string(::getpid()) + ".h5")).string();
+  StandinOptions o;
+  o.mocap = corpus.string();
+  o.placement = "follow";  // as documented: the real clips leave a fixed 1.6 m mat
+  o.threads = 1;
+  write_standin(path, o, /*force=*/true);
+  const Dataset d = Dataset::open(path);
+  EXPECT_NE(d.info().config_json.find("\"placement\":\"follow\""), std::string::npos);
+  std::vector<std::string> ids;
+  for (const auto& b : d.bodies()) ids.push_back(b.id);
+  EXPECT_EQ(ids, (std::vector<std::string>{"s1", "s2", "s3", "s5", "s6", "s14", "s141"}));
+  std::map<std::string, std::set<std::string>> found;
+  std::map<std::string, int> sequences_of;
+  long long frames = 0, loaded = 0;  // frames carrying at least 100 N
+  for (const auto& m : d.sequences()) {
+    EXPECT_EQ(m.body_id, "s" + m.performer.substr(3)) << m.name;  // performer "CMU<n>"
+    EXPECT_GE(m.frames, 30) << m.name;  // every clip gives at least one HAR window
+    found[m.body_id].insert(m.category);
+    ++sequences_of[m.body_id];
+    const PressureSequence s = d.read(m.name);
+    for (int t = 0; t < s.frames(); ++t) {
+      double kpa = 0;
+      for (int i = 0; i < s.mat.cells(); ++i) kpa += s.frame(t)[i];
+      loaded += kpa * 1000 * s.mat.cell_area_m2() >= 100;
+      ++frames;
+    }
+  }
+  // The mat follows the body: the activity is on it (measured 89 %; the
+  // rest are flight phases of jumps and leaps, and the run/jog and
+  // uneven-terrain clips). A fixed mat senses 63 %.
+  EXPECT_GT(double(loaded) / double(frames), 0.8);
+  EXPECT_EQ(found, expected);
+  EXPECT_EQ(sequences_of, clips_of);
+  // The documented split (train 2,3,5,14 / test 1,6,141) has every category
+  // performed by two or more performers on both sides; freestyle (s5 only)
+  // can only train.
+  const std::set<std::string> train = {"s2", "s3", "s5", "s14"}, test = {"s1", "s6", "s141"};
+  std::map<std::string, std::set<std::string>> sides;  // category -> "train" / "test"
+  std::map<std::string, int> performers;
+  for (const auto& [subject, categories] : found)
+    for (const auto& c : categories) {
+      sides[c].insert(train.count(subject) ? "train" : test.count(subject) ? "test" : "none");
+      ++performers[c];
+    }
+  for (const auto& [c, n] : performers)
+    EXPECT_EQ(sides[c], (n >= 2 ? std::set<std::string>{"test", "train"} : std::set<std::string>{"train"})) << c;
+  EXPECT_EQ(performers["freestyle"], 1);
   fs::remove(path);
 }
 

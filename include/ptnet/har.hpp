@@ -3,9 +3,11 @@
 //
 //   // the building blocks
 //   Eigen::MatrixXd f = ptnet::har::window_features(windows, mat);   // [N, F]
+//   ptnet::har::robust_standardise(f);                               // median/MAD, clipped
 //   ptnet::har::Pca pca = ptnet::har::Pca::fit(f, 4);                // standardise + PCA
 //   Eigen::MatrixXd z = pca.transform(f);                            // [N, 4]
-//   ptnet::har::MeanShiftResult ms = ptnet::har::mean_shift(z, {});  // pseudo labels
+//   ptnet::har::MeanShiftResult ms = ptnet::har::mean_shift(z, {});  // pseudo labels (bandwidth rule)
+//   double ari = ptnet::har::adjusted_rand_index(ms.labels, categories);
 //   ptnet::har::WindowClassifier net(shape, ms.clusters(), {});      // small CNN
 //   net.train(inputs, ms.labels);
 //   auto report = ptnet::har::classification_report(truth, net.predict(test), classes);
@@ -78,6 +80,13 @@ Eigen::MatrixXd window_features(const WindowBatch& windows, double fps = 30);
 // clusters follow activities rather than bodies. features [N, F], subject [N].
 void normalise_per_subject(Eigen::MatrixXd& features, const std::vector<std::string>& subject);
 
+// Robust standardisation, in place: each column of features [N, F] becomes
+// (x - median) / (1.4826 MAD), clipped to +-clip (a column with MAD 0 uses
+// its standard deviation, a constant column becomes 0). The window features
+// are heavy-tailed (peaks, speeds, force ratios): a plain z-score lets a few
+// extreme windows set every distance, and mean shift then sees one blob.
+void robust_standardise(Eigen::MatrixXd& features, double clip = 3);
+
 // Standardisation (z-score per column; a constant column keeps scale 1) then
 // principal components by Eigen::SelfAdjointEigenSolver on the covariance.
 struct Pca {
@@ -99,8 +108,14 @@ struct Pca {
 enum class Kernel { flat, gaussian };
 
 struct MeanShiftOptions {
-  double bandwidth = 0;           // <= 0: estimate_bandwidth(x, quantile)
-  double quantile = 0.3;          // for the bandwidth rule (scikit-learn's default)
+  double bandwidth = 0;           // > 0: this bandwidth; else the rule below
+  // The bandwidth rule: a clustering at estimate_bandwidth(x, q) for each
+  // candidate q, the one with the highest silhouette kept (a tie: fewer
+  // clusters). One entry: that quantile, no selection (scikit-learn's
+  // default is the single quantile 0.3, which merges any structure finer
+  // than ~30 % of the data: docs/har.md).
+  std::vector<double> quantiles{0.05, 0.1, 0.15, 0.2, 0.3};
+  int silhouette_points = 2000;   // silhouette on every ceil(N / this)-th point
   Kernel kernel = Kernel::flat;   // flat: mean of points within the bandwidth
   int max_iterations = 300;       // per seed
   double tolerance = 1e-3;        // stop when a mode moves less than tolerance x bandwidth
@@ -110,8 +125,18 @@ struct MeanShiftOptions {
   double min_cluster_fraction = 0.01;  // smaller clusters merge into the nearest larger one
 };
 
+// One bandwidth the rule tried.
+struct BandwidthCandidate {
+  double quantile = 0, bandwidth = 0;
+  int clusters = 0;
+  double silhouette = -1;  // -1: a single cluster
+};
+
 struct MeanShiftResult {
   double bandwidth = 0;        // the bandwidth used (given or estimated)
+  double quantile = 0;         // the rule's chosen quantile (0: bandwidth given)
+  double silhouette = -1;      // of the clustering (sampled; -1: a single cluster)
+  std::vector<BandwidthCandidate> candidates;  // what the rule tried, in quantile order
   Eigen::MatrixXd modes;       // [C, K], ordered by cluster size, largest first
   std::vector<int> labels;     // [N] cluster of each point, 0..C-1
   std::vector<int> sizes;      // [C] points per cluster
@@ -119,7 +144,7 @@ struct MeanShiftResult {
   int clusters() const { return int(modes.rows()); }
 };
 
-// The bandwidth rule: the mean, over the points of a deterministic
+// The bandwidth estimate: the mean, over the points of a deterministic
 // subsample (every ceil(N / max_points)-th row, at most max_points rows), of
 // the distance to the k-th nearest other point of that subsample, with
 // k = max(1, round(quantile * (m - 1))); scikit-learn's estimate_bandwidth
@@ -127,7 +152,8 @@ struct MeanShiftResult {
 // quantile outside (0, 1]. Returns at least 1e-12 (all points equal).
 double estimate_bandwidth(const Eigen::MatrixXd& x, double quantile = 0.3, int max_points = 1000);
 
-// Mean-shift clustering of x [N, K]. Deterministic; no randomness at all.
+// Mean-shift clustering of x [N, K], bandwidth given or chosen by the rule
+// (MeanShiftOptions::quantiles). Deterministic; no randomness at all.
 MeanShiftResult mean_shift(const Eigen::MatrixXd& x, const MeanShiftOptions& options);
 
 // Index of the nearest mode (Euclidean) for every row of x: [N].
@@ -153,6 +179,18 @@ struct ClassificationReport {
 // has F1 = 0 and counts (zero_division = 0).
 ClassificationReport classification_report(const std::vector<int>& truth,
                                             const std::vector<int>& predicted, int classes);
+
+// Agreement of a clustering with reference labels (both [N], values >= 0;
+// throws Error for unequal lengths, no points or a negative label).
+// Purity: the fraction of points in their cluster's majority class.
+double cluster_purity(const std::vector<int>& clusters, const std::vector<int>& truth);
+// Adjusted Rand index (Hubert & Arabie; scikit-learn's adjusted_rand_score):
+// 1 = the same partition, about 0 = chance agreement; symmetric.
+double adjusted_rand_index(const std::vector<int>& a, const std::vector<int>& b);
+// Mean silhouette of x [N, K] under labels [N] (Euclidean; scikit-learn's
+// silhouette_score: a singleton scores 0): near 1 = compact, well separated
+// clusters, near 0 = overlapping. Throws Error with fewer than 2 clusters.
+double silhouette(const Eigen::MatrixXd& x, const std::vector<int>& labels);
 
 // ---------------------------------------------------------------- classifier
 
@@ -275,11 +313,18 @@ struct HarResult {
   double pca_explained = 0;
   double bandwidth = 0;
   bool bandwidth_estimated = true;
+  double bandwidth_quantile = 0;                    // the rule's choice (0: given)
+  std::vector<BandwidthCandidate> bandwidth_candidates;  // what the rule tried
+  double silhouette = -1;                           // of the pseudo labels, in PCA space
   int clusters = 0;
   std::vector<int> cluster_sizes;                   // [C] over all real windows
+  // [C] per cluster, the features furthest from the median window: (name,
+  // mean robust z over the cluster's windows), largest |z| first (4 each).
+  std::vector<std::vector<std::pair<std::string, double>>> cluster_features;
   std::vector<std::string> categories;              // category label names (sorted)
   Eigen::MatrixXi cluster_vs_category;              // [C, categories] window counts
   double cluster_purity = 0;                        // majority-category fraction
+  double cluster_ari = 0;                           // adjusted Rand index against categories
   std::vector<SourceResult> sources;                // real, synthetic, real+synthetic
   double seconds = 0;
 };
@@ -296,6 +341,9 @@ HarResult validate_har(const Dataset& real, const TransferFn& transfer, const Ha
 // Table 3's layout (one row of macro F1 mean +- std per label kind, one
 // column per training source) plus accuracy and per-class F1.
 std::string format_table(const HarResult& result);
+// One line on the pseudo labels: PCA, bandwidth (and how it was chosen),
+// clusters, silhouette.
+std::string pseudo_label_summary(const HarResult& result);
 std::string to_json(const HarResult& result);  // pretty-printed JSON text
 // A training source as Table 3 names it: "Real", "Synthetic", "Real+Synthetic".
 std::string source_title(const std::string& source);
@@ -324,6 +372,10 @@ struct StandinOptions {
   double noise_sd_kpa = 0.6;      // (training default 0.2)
   double gain_sd = 0.15;          // sigma of the per-cell log-normal gain
   double dead_fraction = 0.01;    // cells that always read 0
+  // fixed: a physical 1.6 m mat (the procedural motions stay on it); follow:
+  // the mat follows the body (real clips walk, dribble and leap off a fixed
+  // mat: docs/har.md)
+  std::string placement = "fixed";
   std::uint64_t seed = 1;
   int threads = 0;                // simulation threads (0: all cores)
   ProgressFn progress;            // a line {"standin", line} per step, may be empty

@@ -195,7 +195,33 @@ RealWindows read_real_windows(const Dataset& real, const HarOptions& o, HarResul
   return w;
 }
 
-// Pseudo labels: standardise + PCA + mean shift on all real windows, train
+// Per cluster, the features furthest from the median window: mean robust z
+// over the cluster's windows, the kClusterFeatures largest |z| first.
+// features [N, F] (robust-standardised), labels [N] in [0, C).
+std::vector<std::vector<std::pair<std::string, double>>> cluster_profiles(const Eigen::MatrixXd& features,
+                                                                          const std::vector<int>& labels,
+                                                                          int clusters) {
+  constexpr int kClusterFeatures = 4;  // features named per cluster
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(clusters, features.cols());
+  std::vector<int> count(clusters, 0);
+  for (int i = 0; i < int(labels.size()); ++i) {
+    sum.row(labels[i]) += features.row(i);
+    ++count[labels[i]];
+  }
+  std::vector<std::vector<std::pair<std::string, double>>> out(clusters);
+  for (int c = 0; c < clusters; ++c) {
+    std::vector<std::pair<std::string, double>> all;
+    for (int j = 0; j < features.cols(); ++j)
+      all.emplace_back(feature_names()[j], count[c] ? sum(c, j) / count[c] : 0.0);
+    std::stable_sort(all.begin(), all.end(),
+                     [](const auto& a, const auto& b) { return std::fabs(a.second) > std::fabs(b.second); });
+    all.resize(std::min<std::size_t>(all.size(), kClusterFeatures));
+    out[c] = all;
+  }
+  return out;
+}
+
+// Pseudo labels: robust standardise + PCA + mean shift on all real windows, train
 // windows first: [N].
 std::vector<int> pseudo_labels(const Dataset& real, const RealWindows& w, const HarOptions& o, HarResult& r) {
   const int n_all = w.count();
@@ -206,6 +232,7 @@ std::vector<int> pseudo_labels(const Dataset& real, const RealWindows& w, const 
     for (int j = 0; j < nf; ++j) features(i, j) = f[j];
   }
   normalise_per_subject(features, window_subjects(real, w.train, w.test));
+  robust_standardise(features);
   const int k = std::clamp(o.pca_components, 1, nf);
   const Pca pca = Pca::fit(features, k);
   const MeanShiftResult ms = mean_shift(pca.transform(features), o.mean_shift);
@@ -213,11 +240,17 @@ std::vector<int> pseudo_labels(const Dataset& real, const RealWindows& w, const 
   r.pca_explained = pca.explained;
   r.bandwidth = ms.bandwidth;
   r.bandwidth_estimated = !(o.mean_shift.bandwidth > 0);
+  r.bandwidth_quantile = ms.quantile;
+  r.bandwidth_candidates = ms.candidates;
+  r.silhouette = ms.silhouette;
   r.clusters = ms.clusters();
   r.cluster_sizes = ms.sizes;
+  r.cluster_features = cluster_profiles(features, ms.labels, r.clusters);
   std::ostringstream s;
-  s << "har: mean shift: " << r.clusters << " clusters, bandwidth " << r.bandwidth
-    << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", PCA " << k << " components ("
+  s << "har: mean shift: " << r.clusters << " clusters, bandwidth " << r.bandwidth;
+  if (r.bandwidth_estimated) s << " (estimated: quantile " << r.bandwidth_quantile << ", best silhouette)";
+  else s << " (given)";
+  s << ", silhouette " << fixed_text(r.silhouette) << ", PCA " << k << " components ("
     << int(std::round(100 * pca.explained)) << " % of variance), " << ms.seeds << " seeds";
   say(o, s.str());
   if (r.clusters < 2)
@@ -257,11 +290,12 @@ Labels split_labels(const RealWindows& w, const std::vector<int>& labels, const 
     const std::string& c = i < train.count() ? train.category[i] : test.category[i - train.count()];
     ++r.cluster_vs_category(labels[i], category_index(c));
   }
-  long long majority = 0;
-  for (int c = 0; c < r.clusters; ++c) majority += r.cluster_vs_category.row(c).maxCoeff();
-  r.cluster_purity = double(majority) / double(w.count());
   for (const auto& c : train.category) l.train_cat.push_back(category_index(c));
   for (const auto& c : test.category) l.test_cat.push_back(category_index(c));
+  std::vector<int> all_cat = l.train_cat;
+  all_cat.insert(all_cat.end(), l.test_cat.begin(), l.test_cat.end());
+  r.cluster_purity = cluster_purity(labels, all_cat);
+  r.cluster_ari = adjusted_rand_index(labels, all_cat);
   return l;
 }
 

@@ -265,6 +265,29 @@ Eigen::MatrixXd window_features(const WindowBatch& windows, double fps) {
   return x;
 }
 
+void robust_standardise(Eigen::MatrixXd& features, double clip) {
+  if (!(clip > 0)) throw Error("robust standardise: expected clip > 0, found " + std::to_string(clip));
+  const int n = int(features.rows());
+  if (n == 0) return;
+  std::vector<double> v(n);
+  auto median = [&] {
+    std::nth_element(v.begin(), v.begin() + n / 2, v.end());
+    return v[n / 2];
+  };
+  for (int j = 0; j < features.cols(); ++j) {
+    for (int i = 0; i < n; ++i) v[i] = features(i, j);
+    const double centre = median();
+    for (int i = 0; i < n; ++i) v[i] = std::fabs(features(i, j) - centre);
+    double scale = 1.4826 * median();  // MAD -> sd of a normal distribution
+    if (!(scale > 1e-12)) {
+      const double mean = features.col(j).mean();
+      scale = std::sqrt((features.col(j).array() - mean).square().mean());
+    }
+    for (int i = 0; i < n; ++i)
+      features(i, j) = scale > 1e-12 ? std::clamp((features(i, j) - centre) / scale, -clip, clip) : 0.0;
+  }
+}
+
 Pca Pca::fit(const Eigen::MatrixXd& x, int k) {
   const int n = int(x.rows()), f = int(x.cols());
   if (n < 2) throw Error("pca: need at least 2 rows, found " + std::to_string(n));

@@ -115,10 +115,7 @@ std::vector<std::string> write_html_report(const std::string& out_dir, const Har
     << "</code>: train subjects " << html_escape(join(r.train_subjects)) << " (" << r.train_windows
     << " windows), test subjects " << html_escape(join(r.test_subjects)) << " (" << r.test_windows
     << " windows), stride " << r.stride << ", " << r.runs
-    << " seeded runs per source. Pseudo labels: mean shift on " << r.pca_components
-    << " PCA components (" << fixed_text(100 * r.pca_explained, 1) << " % of variance), bandwidth "
-    << fixed_text(r.bandwidth) << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", "
-    << r.clusters << " clusters. Every number: <a href=\"results.json\">results.json</a>.</p>\n";
+    << " seeded runs per source. Pseudo labels: " << html_escape(pseudo_label_summary(r)) << ". Every number: <a href=\"results.json\">results.json</a>.</p>\n";
   b << "<h2>Table 3: macro F1 by training source</h2>\n" << table3_html(r);
   write_text_file(path("f1.svg"), f1_chart(r), force);
   written.push_back(path("f1.svg"));
@@ -163,7 +160,8 @@ std::vector<std::string> write_html_report(const std::string& out_dir, const Har
   }
   b << "</table>\n";
   if (!r.categories.empty())
-    b << "<p>Cluster purity against categories: " << fixed_text(r.cluster_purity) << "</p>\n";
+    b << "<p>Cluster purity against categories: " << fixed_text(r.cluster_purity) << ", adjusted Rand index "
+      << fixed_text(r.cluster_ari) << "</p>\n";
 
   b << "<h2>Synthetic bodies</h2>\n<table><tr><th>id</th><th>sex</th><th>height "
        "(cm)</th><th>weight (kg)</th></tr>\n";

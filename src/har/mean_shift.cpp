@@ -248,22 +248,76 @@ void renumber(const RowMajor& centres, const std::vector<int>& labels, const std
 
 }  // namespace
 
-MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions& o) {
-  const int n = int(input.rows()), k = int(input.cols());
-  if (n < 1 || k < 1) throw Error("mean shift: no points to cluster");
-  if (!input.allFinite()) throw Error("mean shift: points contain NaN or infinity");
+namespace {
+
+// One clustering at bandwidth h (seeds, climb, merge, fold, renumber).
+MeanShiftResult mean_shift_at(const RowMajor& x, const MeanShiftOptions& o, double h) {
   MeanShiftResult r;
-  if (o.bandwidth > 0) r.bandwidth = o.bandwidth;
-  else r.bandwidth = n >= 2 ? estimate_bandwidth(input, o.quantile) : 1.0;
-  const RowMajor x = input;
-  const auto seeds = seeds_of(x, o, r.bandwidth);
+  r.bandwidth = h;
+  const auto seeds = seeds_of(x, o, h);
   r.seeds = int(seeds.size());
-  const std::vector<Mode> modes = climb_modes(x, o, r.bandwidth, seeds, r.seeds);
-  const RowMajor centres = merge_modes(modes, o, r.bandwidth, k);
+  const std::vector<Mode> modes = climb_modes(x, o, h, seeds, r.seeds);
+  const RowMajor centres = merge_modes(modes, o, h, int(x.cols()));
   std::vector<bool> alive;
   const std::vector<int> labels = assign_and_fold(centres, x, o, alive);
   renumber(centres, labels, alive, r);
   return r;
+}
+
+// Silhouette on every ceil(N / max_points)-th point (scikit-learn's
+// sample_size, without its randomness); -1 when fewer than 2 clusters show.
+double sampled_silhouette(const Eigen::MatrixXd& x, const std::vector<int>& labels, int max_points) {
+  const int n = int(x.rows());
+  const int step = (n + std::max(2, max_points) - 1) / std::max(2, max_points);
+  std::vector<int> rows;
+  for (int i = 0; i < n; i += step) rows.push_back(i);
+  Eigen::MatrixXd sub(int(rows.size()), x.cols());
+  std::vector<int> sub_labels;
+  for (int i = 0; i < int(rows.size()); ++i) {
+    sub.row(i) = x.row(rows[i]);
+    sub_labels.push_back(labels[rows[i]]);
+  }
+  const std::vector<int> sorted = [&] {
+    std::vector<int> v = sub_labels;
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+  }();
+  if (sorted.size() < 2) return -1;
+  return silhouette(sub, sub_labels);
+}
+
+}  // namespace
+
+MeanShiftResult mean_shift(const Eigen::MatrixXd& input, const MeanShiftOptions& o) {
+  const int n = int(input.rows()), k = int(input.cols());
+  if (n < 1 || k < 1) throw Error("mean shift: no points to cluster");
+  if (!input.allFinite()) throw Error("mean shift: points contain NaN or infinity");
+  const RowMajor x = input;
+  if (o.bandwidth > 0 || n < 2) {
+    MeanShiftResult r = mean_shift_at(x, o, o.bandwidth > 0 ? o.bandwidth : 1.0);
+    if (r.clusters() > 1) r.silhouette = sampled_silhouette(input, r.labels, o.silhouette_points);
+    return r;
+  }
+  if (o.quantiles.empty()) throw Error("mean shift: expected a bandwidth or at least one quantile, found neither");
+  // The bandwidth rule: one clustering per candidate quantile, the best
+  // separated (highest silhouette) wins; a tie goes to fewer clusters.
+  MeanShiftResult best;
+  bool have = false;
+  std::vector<BandwidthCandidate> tried;
+  for (double q : o.quantiles) {
+    MeanShiftResult r = mean_shift_at(x, o, estimate_bandwidth(input, q));
+    r.quantile = q;
+    r.silhouette = r.clusters() > 1 ? sampled_silhouette(input, r.labels, o.silhouette_points) : -1;
+    tried.push_back({q, r.bandwidth, r.clusters(), r.silhouette});
+    if (!have || r.silhouette > best.silhouette ||
+        (r.silhouette == best.silhouette && r.clusters() < best.clusters())) {
+      best = std::move(r);
+      have = true;
+    }
+  }
+  best.candidates = std::move(tried);
+  return best;
 }
 
 }  // namespace ptnet::har

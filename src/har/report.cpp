@@ -39,14 +39,29 @@ std::string source_title(const std::string& source) {
   return source == "real" ? "Real" : source == "synthetic" ? "Synthetic" : "Real+Synthetic";
 }
 
+std::string pseudo_label_summary(const HarResult& r) {
+  std::ostringstream o;
+  o << "mean shift on " << r.pca_components << " PCA components (" << fixed_text(100 * r.pca_explained, 1)
+    << " % of variance), bandwidth " << fixed_text(r.bandwidth)
+    << (r.bandwidth_estimated ? " (estimated: quantile " + fixed_text(r.bandwidth_quantile, 2) + ", best silhouette)"
+                              : std::string(" (given)"))
+    << ", " << r.clusters << " clusters, silhouette " << fixed_text(r.silhouette);
+  return o.str();
+}
+
 std::string format_table(const HarResult& r) {
   std::ostringstream o;
   o << "HAR validation of " << r.dataset << ": train subjects " << join(r.train_subjects) << " ("
     << r.train_windows << " windows), test subjects " << join(r.test_subjects) << " ("
     << r.test_windows << " windows), stride " << r.stride << ", " << r.runs << " runs\n";
-  o << "Pseudo labels: mean shift on " << r.pca_components << " PCA components ("
-    << fixed_text(100 * r.pca_explained, 1) << " % of variance), bandwidth " << fixed_text(r.bandwidth)
-    << (r.bandwidth_estimated ? " (estimated)" : " (given)") << ", " << r.clusters << " clusters\n";
+  o << "Pseudo labels: " << pseudo_label_summary(r) << "\n";
+  if (!r.bandwidth_candidates.empty()) {
+    o << "Bandwidth rule tried (quantile: bandwidth, clusters, silhouette):";
+    for (const auto& c : r.bandwidth_candidates)
+      o << " " << fixed_text(c.quantile, 2) << ": " << fixed_text(c.bandwidth) << ", " << c.clusters << ", "
+        << (c.clusters > 1 ? fixed_text(c.silhouette) : std::string("-")) << ";";
+    o << "\n";
+  }
   o << "Synthetic: " << r.synthetic_bodies.size() << " bodies (";
   for (std::size_t i = 0; i < r.synthetic_bodies.size(); ++i) {
     const BodySpec& b = r.synthetic_bodies[i];
@@ -87,7 +102,16 @@ std::string format_table(const HarResult& r) {
     o << "\n";
   }
   if (!r.categories.empty())
-    o << "Cluster purity against categories: " << fixed_text(r.cluster_purity) << "\n";
+    o << "Cluster purity against categories: " << fixed_text(r.cluster_purity) << ", adjusted Rand index "
+      << fixed_text(r.cluster_ari) << "\n";
+  if (!r.cluster_features.empty()) {
+    o << "What separates the clusters (mean robust z of the features furthest from the median window):\n";
+    for (int c = 0; c < int(r.cluster_features.size()); ++c) {
+      o << "  " << c << ":";
+      for (const auto& [name, z] : r.cluster_features[c]) o << " " << name << " " << (z >= 0 ? "+" : "") << fixed_text(z, 2);
+      o << "\n";
+    }
+  }
   o << "Time: " << fixed_text(r.seconds, 1) << " s\n";
   return o.str();
 }
@@ -104,10 +128,24 @@ std::string to_json(const HarResult& r) {
   j["test_windows"] = r.test_windows;
   j["features"] = feature_names();
   j["pca"] = {{"components", r.pca_components}, {"explained_variance", r.pca_explained}};
+  json tried = json::array();
+  for (const auto& c : r.bandwidth_candidates)
+    tried.push_back({{"quantile", c.quantile}, {"bandwidth", c.bandwidth}, {"clusters", c.clusters},
+                     {"silhouette", c.silhouette}});
+  json profiles = json::array();
+  for (const auto& features : r.cluster_features) {
+    json p = json::array();
+    for (const auto& [name, z] : features) p.push_back({{"feature", name}, {"robust_z", z}});
+    profiles.push_back(p);
+  }
   j["mean_shift"] = {{"bandwidth", r.bandwidth},
                      {"bandwidth_estimated", r.bandwidth_estimated},
+                     {"quantile", r.bandwidth_quantile},
+                     {"candidates", tried},
+                     {"silhouette", r.silhouette},
                      {"clusters", r.clusters},
-                     {"cluster_sizes", r.cluster_sizes}};
+                     {"cluster_sizes", r.cluster_sizes},
+                     {"cluster_features", profiles}};
   json bodies = json::array();
   for (const auto& b : r.synthetic_bodies)
     bodies.push_back({{"id", b.id}, {"sex", sex_word(b.sex)}, {"height_cm", b.height_cm},
@@ -117,6 +155,7 @@ std::string to_json(const HarResult& r) {
     j["categories"] = r.categories;
     j["cluster_vs_category"] = matrix(r.cluster_vs_category);
     j["cluster_purity"] = r.cluster_purity;
+    j["cluster_adjusted_rand_index"] = r.cluster_ari;
   }
   json sources = json::array();
   for (const auto& s : r.sources) {

@@ -189,6 +189,7 @@ void write_standin(const std::string& path, const StandinOptions& o, bool force)
   SimOptions sim;
   sim.sensor.crosstalk = o.crosstalk;
   sim.sensor.noise_sd_kpa = o.noise_sd_kpa;
+  sim.placement = parse_placement(o.placement);
   sim.seed = o.seed;
   const std::vector<float> gain = standin_gain_map(sim.mat, o);
   std::vector<Body> bodies;
@@ -225,6 +226,7 @@ void write_standin(const std::string& path, const StandinOptions& o, bool force)
   cfg["noise_sd_kpa"] = o.noise_sd_kpa;
   cfg["gain_sd"] = o.gain_sd;
   cfg["dead_fraction"] = o.dead_fraction;
+  cfg["placement"] = placement_name(sim.placement);
   cfg["seed"] = o.seed;
   info.config_json = cfg.dump();
   DatasetWriter w(path, info, plan.bodies, force);
