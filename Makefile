@@ -31,14 +31,14 @@ bench: build
 	./scripts/run-benchmarks.sh $(BUILD)
 
 asan: deps
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPTNET_SANITIZE=ON -DPTNET_BUILD_BENCH=OFF
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPTNET_SANITIZE=ON -DPTNET_BUILD_BENCH=OFF -DPTNET_PYTHON=OFF
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ctest --output-on-failure -L unit -j $(JOBS)
 
 fuzz: deps
 	PTNET_FUZZ_DEPS=1 ./scripts/install-deps.sh
 	cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPTNET_FUZZ=ON \
-	      -DPTNET_BUILD_TESTS=OFF -DPTNET_BUILD_BENCH=OFF
+	      -DPTNET_BUILD_TESTS=OFF -DPTNET_BUILD_BENCH=OFF -DPTNET_PYTHON=OFF
 	cmake --build build-fuzz -j $(JOBS) --target fuzzers
 	@echo "fuzzers in build-fuzz/fuzz/; seeds in tests/data/fuzz/ (README.md, Development)"
 

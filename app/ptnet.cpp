@@ -13,26 +13,7 @@
 
 #include "command.hpp"
 #include "ptnet/error.hpp"
-
-namespace {
-// A message as one line: line breaks become "; ", control bytes are escaped.
-std::string one_line(const std::string& text) {
-  std::string out;
-  for (unsigned char c : text) {
-    if (c == '\n' || c == '\r') {
-      if (!out.empty() && out.back() != ' ') out += "; ";
-    } else if (c < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", c);
-      out += buf;
-    } else {
-      out += char(c);
-    }
-  }
-  while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
-  return out;
-}
-}  // namespace
+#include "ptnet/strings.hpp"
 
 namespace ptnet::cli {
 Globals& globals() {
@@ -62,19 +43,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {  // usage: one line, status 2
-    std::cerr << "ptnet: error: " << one_line(e.what()) << " (ptnet --help)\n";
+    std::cerr << "ptnet: error: " << ptnet::one_line(e.what()) << " (ptnet --help)\n";
     return 2;
   } catch (const ptnet::Error& e) {
-    std::cerr << "ptnet: error: " << one_line(e.what()) << "\n";
+    std::cerr << "ptnet: error: " << ptnet::one_line(e.what()) << "\n";
     return 1;
   } catch (const c10::Error& e) {
-    std::cerr << "ptnet: error: " << one_line(e.what_without_backtrace()) << "\n";
+    std::cerr << "ptnet: error: " << ptnet::one_line(e.what_without_backtrace()) << "\n";
     return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "ptnet: error: out of memory\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "ptnet: error: " << one_line(e.what()) << "\n";
+    std::cerr << "ptnet: error: " << ptnet::one_line(e.what()) << "\n";
     return 1;
   }
   return 0;

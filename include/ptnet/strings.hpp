@@ -27,5 +27,9 @@ bool starts_with(std::string_view s, std::string_view prefix);
 bool ends_with(std::string_view s, std::string_view suffix);
 // A finite number that is the whole (trimmed) text; false otherwise (value unchanged).
 bool parse_number(std::string_view text, double& value);
+// A message as one line (how the CLI and the Python module show an error):
+// line breaks become "; ", other control bytes are escaped (\x1b), trailing
+// blanks and semicolons dropped.
+std::string one_line(std::string_view text);
 
 }  // namespace ptnet

@@ -1,5 +1,5 @@
-// PressureTransferNet module, weights I/O. The only Torch translation unit of
-// the model stage besides transfer.cpp.
+// PressureTransferNet module, weights I/O (state_dict.cpp: the same weights
+// as a PyTorch state dict).
 //
 // Dimension legend: N windows, T frames (channels), H x W mat cells,
 // A = 3 attributes, C1..C3 conv widths.

@@ -1,0 +1,36 @@
+// ptnet/state_dict.hpp: a model folder's weights as a PyTorch state dict, and
+// back (no Torch in this header; the CLI's `ptnet export` / `import-weights`).
+//
+//   ptnet::export_state_dict("model/", "weights.pt", /*force=*/false);
+//   // Python: sd = torch.load("weights.pt"); net.load_state_dict(sd)  (python/ptnet_torch.py)
+//   ptnet::import_state_dict("tuned.pt", "model/", "tuned_model/", /*force=*/false);
+//
+// The file is what Python's torch.save writes for a dict of tensors (a zip
+// archive holding data.pkl; LibTorch's torch::pickle_save): keys are the
+// module's parameter and buffer names ("conv1.weight", "bn1.running_mean",
+// "frame.film2.bias", "contact_floor", ...), the same as state_dict() of the
+// modules in python/ptnet_torch.py; float32 tensors on the CPU
+// (num_batches_tracked int64). The architecture and the normalisation are not
+// in it: they stay in config.json (docs/python.md).
+#pragma once
+
+#include <string>
+
+namespace ptnet {
+
+// Reads MODEL_DIR (config.json, model.pt: validated and digest-checked as by
+// Transfer) and writes its weights to `out_path` as a state dict. Throws
+// Error naming the file.
+void export_state_dict(const std::string& model_dir, const std::string& out_path, bool force);
+
+// Reads a state dict saved by torch.save (a plain dict of tensors: LibTorch
+// cannot read the OrderedDict of state_dict() itself) for the architecture in CONFIG_DIR/config.json, and writes a model folder
+// `out_dir`: config.json (config_dir's, with the new weights' digest; its
+// training metrics replaced by {"imported_from": weights_path}) and model.pt.
+// Every key of the model must be present with its shape, and no other key
+// (Error "weights.pt: missing tensor \"conv1.weight\"", "... unexpected
+// tensor \"fc.weight\"", "... has shape [4, 1, 3, 3], the model expects ...").
+void import_state_dict(const std::string& weights_path, const std::string& config_dir, const std::string& out_dir,
+                       bool force);
+
+}  // namespace ptnet

@@ -1,0 +1,196 @@
+// ptnet (Python): motions, bodies and the simulator.
+//
+// Dimension legend: T frames, K = 19 canonical joints, H x W mat cells.
+#include <pybind11/stl.h>
+
+#include <optional>
+
+#include "module.hpp"
+#include "ptnet/body.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/motion.hpp"
+#include "ptnet/sim.hpp"
+
+namespace ptnet::python {
+namespace {
+
+static_assert(sizeof(Pose) == sizeof(double) * 3 * kJointCount, "Pose must be K x 3 packed doubles");
+
+// motion.frames as a read-only float64 view [T, K, 3] (m) that keeps `self` alive.
+py::array_t<double> positions_view(py::object self) {
+  const Motion& mo = self.cast<const Motion&>();
+  const py::ssize_t t = mo.size();
+  py::array_t<double> view({t, py::ssize_t(kJointCount), py::ssize_t(3)},
+                           t ? mo.frames.front()[0].data() : nullptr, self);
+  view.attr("setflags")(py::arg("write") = false);
+  return view;
+}
+
+std::vector<std::string> joint_names() {
+  std::vector<std::string> names;
+  for (int j = 0; j < kJointCount; ++j) names.emplace_back(joint_name(j));
+  return names;
+}
+
+struct SimArgs {
+  std::uint64_t seed = 0;
+  std::string placement = "fixed";
+  bool retarget = true;
+  int rows = kMatRows, cols = kMatCols;
+  double pitch_m = kMatPitchM, compliance_mm = 10;
+  int subsamples = 3;
+  bool ideal_sensor = false;
+  std::optional<double> crosstalk, saturation_kpa, noise_kpa, threshold_kpa, quantum_kpa;
+};
+
+// The options `ptnet simulate` builds from the same flags (app/cmd_simulate.cpp).
+SimOptions sim_options(const SimArgs& a) {
+  SimOptions s;
+  s.mat = MatSpec{a.rows, a.cols, a.pitch_m};
+  s.placement = parse_placement(a.placement);
+  s.compliance_m = a.compliance_mm / 1000.0;
+  s.subsamples = a.subsamples;
+  if (a.ideal_sensor) s.sensor = ideal_sensor();
+  if (a.crosstalk) s.sensor.crosstalk = *a.crosstalk;
+  if (a.saturation_kpa) s.sensor.saturation_kpa = *a.saturation_kpa;
+  if (a.noise_kpa) s.sensor.noise_sd_kpa = *a.noise_kpa;
+  if (a.threshold_kpa) s.sensor.threshold_kpa = *a.threshold_kpa;
+  if (a.quantum_kpa) s.sensor.quantum_kpa = *a.quantum_kpa;
+  s.seed = a.seed;
+  return s;
+}
+
+// As `ptnet simulate` does each sequence: the source motion retargeted onto
+// the body's height, placed as the source is placed, scaled (place_copy).
+py::array_t<float> simulate_motion(const Motion& motion, const BodySpec& spec, const SimArgs& args) {
+  const SimOptions options = sim_options(args);
+  PressureSequence out;
+  {
+    py::gil_scoped_release release;
+    const Body body(spec);  // validates
+    if (args.retarget) {
+      const Motion copy = retarget(motion, spec.height_cm);
+      out = simulate(copy, body, options, place_copy(motion, spec.height_cm, options));
+    } else {
+      out = simulate(motion, body, options);
+    }
+  }
+  return pressure_array(std::move(out));
+}
+
+}  // namespace
+
+void bind_motion(py::module_& m) {
+  py::class_<Motion>(m, "Motion",
+                     "A motion on the canonical skeleton: world joint positions (m, z up, ground z = 0) at fps.")
+      .def_readonly("name", &Motion::name)
+      .def_readonly("fps", &Motion::fps)
+      .def("__len__", &Motion::size)
+      .def_property_readonly("frames", &Motion::size)
+      .def_property_readonly("positions", &positions_view, "float64 [T, 19, 3] world joint positions (m), read-only view")
+      .def_property_readonly_static("joint_names", [](py::object) { return joint_names(); },
+                                    "the 19 canonical joint names, in the order of positions' axis 1")
+      .def("retarget", [](const Motion& mo, double height_cm) {
+            py::gil_scoped_release release;
+            return retarget(mo, height_cm);
+          }, py::arg("height_cm"), "The motion on a body of height_cm (bone lengths replaced, rotations kept).")
+      .def("write_bvh", [](const Motion& mo, const std::string& path, bool force) {
+            write_bvh(motion_to_bvh(mo), path, force);
+          }, py::arg("path"), py::arg("force") = false, "Writes the motion as BVH (canonical skeleton, cm, y up).")
+      .def("__repr__", [](const Motion& mo) {
+        return "<ptnet.Motion '" + mo.name + "': " + std::to_string(mo.size()) + " frames at " +
+               number_text(mo.fps) + " fps>";
+      });
+
+  m.def("read_bvh",
+        [](const std::string& path, const std::string& units, const std::string& up, double fps,
+           double metres_per_unit, bool keep_tpose) {
+          MotionOptions o;
+          o.units = parse_units(units);
+          o.up = parse_up_axis(up);
+          o.fps = fps;
+          o.metres_per_unit = metres_per_unit;
+          o.keep_tpose = keep_tpose;
+          py::gil_scoped_release release;
+          return load_motion(path, o);
+        },
+        py::arg("path"), py::arg("units") = "auto", py::arg("up") = "y", py::arg("fps") = kFps,
+        py::arg("metres_per_unit") = 0.0, py::arg("keep_tpose") = false,
+        "Reads a BVH file onto the canonical joints, resampled to fps (<= 0 keeps the file's), grounded. "
+        "units: auto|m|cm|mm|in|cmu; up: y|z.");
+
+  m.def("generate_motion",
+        [](const std::string& category, int performer, int take, double seconds, std::uint64_t seed, double fps,
+           double height_cm) {
+          GenerateOptions g;
+          g.category = parse_category(category);
+          g.performer = performer;
+          g.take = take;
+          g.seconds = seconds;
+          g.seed = seed;
+          g.fps = fps;
+          g.height_cm = height_cm;
+          py::gil_scoped_release release;
+          Motion mo = generate_motion(g);
+          mo.name = motion_id(performer, g.category, take);
+          return mo;
+        },
+        py::arg("category") = "walking", py::arg("performer") = 1, py::arg("take") = 1, py::arg("seconds") = 10.0,
+        py::arg("seed") = 0, py::arg("fps") = kFps, py::arg("height_cm") = 0.0,
+        "A procedural clip (walking|rom|freestyle|acting), named p<P>_<category>_t<T> as in ptnet's datasets; "
+        "height_cm 0: the performer's own.");
+
+  py::class_<BodySpec>(m, "Body", "A body: sex, height (cm), weight (kg); id and role as in a bodies CSV.")
+      .def(py::init([](const py::object& sex, double height_cm, double weight_kg, const std::string& id,
+                       const std::string& role) {
+             BodySpec b;
+             b.sex = parse_sex(py::str(sex));
+             b.height_cm = height_cm;
+             b.weight_kg = weight_kg;
+             b.id = id;
+             b.role = role;
+             validate(b);
+             return b;
+           }),
+           py::arg("sex"), py::arg("height_cm"), py::arg("weight_kg"), py::arg("id") = "body",
+           py::arg("role") = "retargeted")
+      .def_property_readonly("sex", [](const BodySpec& b) { return std::string(sex_name(b.sex)); })
+      .def_readonly("height_cm", &BodySpec::height_cm)
+      .def_readonly("weight_kg", &BodySpec::weight_kg)
+      .def_readonly("id", &BodySpec::id)
+      .def_readonly("role", &BodySpec::role)
+      .def("__repr__", [](const BodySpec& b) {
+        return "ptnet.Body('" + std::string(sex_name(b.sex)) + "', " + number_text(b.height_cm) + ", " +
+               number_text(b.weight_kg) + ", id='" + b.id + "', role='" + b.role + "')";
+      });
+
+  m.def("sample_bodies", &sample_bodies, py::arg("males") = 8, py::arg("females") = 8, py::arg("originals_f") = 0,
+        py::arg("originals_m") = 0, py::arg("seed") = 1,
+        "Bodies drawn as in the paper (ptnet bodies): ids f01.., m01.. (retargeted), of01.., om01.. (original).");
+  m.def("read_bodies_csv", &read_bodies_csv, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
+  m.def("sequence_seed", &sequence_seed, py::arg("seed"), py::arg("name"),
+        "The sensor seed `ptnet simulate --seed SEED` gives sequence NAME (<motion_id>__<body_id>).");
+
+  m.def("simulate",
+        [](const Motion& motion, const py::object& body, std::uint64_t seed, const std::string& placement,
+           bool retarget, int rows, int cols, double pitch_m, double compliance_mm, int subsamples, bool ideal,
+           std::optional<double> crosstalk, std::optional<double> saturation_kpa, std::optional<double> noise_kpa,
+           std::optional<double> threshold_kpa, std::optional<double> quantum_kpa) {
+          const BodySpec spec = body_argument(body, "body");
+          SimArgs a{seed,      placement, retarget,       rows,      cols,          pitch_m,    compliance_mm,
+                    subsamples, ideal,    crosstalk, saturation_kpa, noise_kpa, threshold_kpa, quantum_kpa};
+          return simulate_motion(motion, spec, a);
+        },
+        py::arg("motion"), py::arg("body"), py::kw_only(), py::arg("seed") = 0, py::arg("placement") = "fixed",
+        py::arg("retarget") = true, py::arg("rows") = kMatRows, py::arg("cols") = kMatCols,
+        py::arg("pitch_m") = kMatPitchM, py::arg("compliance_mm") = 10.0, py::arg("subsamples") = 3,
+        py::arg("ideal_sensor") = false, py::arg("crosstalk") = py::none(), py::arg("saturation_kpa") = py::none(),
+        py::arg("noise_kpa") = py::none(), py::arg("threshold_kpa") = py::none(),
+        py::arg("quantum_kpa") = py::none(),
+        "The motion on the body, pressed onto the mat: float32 [T, rows, cols] kPa. With retarget (the default) "
+        "the motion is the source clip, retargeted onto the body's height and placed as `ptnet simulate` places "
+        "it, so simulate(m, body, seed=sequence_seed(S, name)) equals the CLI's sequence NAME with --seed S. "
+        "Options and sensor defaults: docs/simulate.md.");
+}
+
+}  // namespace ptnet::python

@@ -1,0 +1,103 @@
+// The Python module `ptnet`: the library from Python (README, "Use from
+// Python"; docs/python.md).
+//
+//   import ptnet
+//   m = ptnet.read_bvh("walk.bvh")                       # m.positions [T, 19, 3] m
+//   p = ptnet.simulate(m, ptnet.Body("female", 165, 60), seed=1)   # float32 [T, 80, 28] kPa
+//   q = ptnet.Transfer("model/").run(p, source=("female", 165, 60), target=("male", 185, 95))
+//   print(ptnet.rmse(q, p), ptnet.binary_r2(q, p))
+//
+// Errors: a ptnet::Error becomes OSError when it is about a file that cannot
+// be found, opened, read or written, ValueError otherwise; the message is the
+// CLI's one line (without its "ptnet: error: " prefix). Long calls (read_bvh,
+// generate_motion, simulate, Transfer, run, export) release the GIL.
+#include <c10/util/Exception.h>
+
+#include <string_view>
+
+#include "module.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/strings.hpp"
+
+namespace ptnet::python {
+namespace {
+
+// Messages of the library's file errors ("FILE: no such file", "FILE: cannot
+// open: ...", "FOLDER: cannot create folder: ...").
+bool about_a_file(std::string_view message) {
+  for (const char* phrase : {": no such file", ": no such model folder", ": cannot open", ": cannot read",
+                             ": cannot write", ": cannot create", " does not exist", "permission denied"})
+    if (message.find(phrase) != std::string_view::npos) return true;
+  return false;
+}
+
+void translate(std::exception_ptr p) {
+  try {
+    if (p) std::rethrow_exception(p);
+  } catch (const Error& e) {
+    const std::string text = one_line(e.what());
+    PyErr_SetString(about_a_file(text) ? PyExc_OSError : PyExc_ValueError, text.c_str());
+  } catch (const c10::Error& e) {
+    PyErr_SetString(PyExc_RuntimeError, one_line(e.what_without_backtrace()).c_str());
+  }
+}
+
+}  // namespace
+
+std::string shape_text(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+py::array_t<float> pressure_array(PressureSequence&& seq) {
+  const py::ssize_t t = seq.frames(), h = seq.mat.rows, w = seq.mat.cols;
+  return owned_array(std::move(seq.kpa), {t, h, w});
+}
+
+PressureSequence pressure_sequence(const FloatArray& kpa, const MatSpec& mat, double fps, const std::string& what) {
+  if (kpa.ndim() != 3)
+    throw Error(what + ": expected a float32 array [T, rows, cols] (kPa), found shape " + shape_text(kpa));
+  MatSpec m = mat;
+  m.rows = int(kpa.shape(1));
+  m.cols = int(kpa.shape(2));
+  PressureSequence seq;
+  seq.mat = m;
+  seq.fps = fps;
+  seq.kpa.assign(kpa.data(), kpa.data() + kpa.size());
+  check_finite(seq.kpa.data(), seq.kpa.size(), m.cells(), what, "pressure");
+  return seq;
+}
+
+BodySpec body_argument(const py::handle& value, const std::string& what) {
+  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    auto items = py::reinterpret_borrow<py::sequence>(value);
+    if (items.size() != 3)
+      throw Error(what + ": expected (sex, height_cm, weight_kg) like (\"female\", 165, 60), found " +
+                  std::to_string(items.size()) + " values");
+    BodySpec b;
+    b.id = what;
+    b.sex = parse_sex(py::str(items[0]));
+    b.height_cm = items[1].cast<double>();
+    b.weight_kg = items[2].cast<double>();
+    return b;
+  }
+  try {
+    return value.cast<BodySpec>();
+  } catch (const py::cast_error&) {
+    throw Error(what + ": expected a ptnet.Body or (sex, height_cm, weight_kg), found " +
+                std::string(py::str(value.get_type().attr("__name__"))));
+  }
+}
+
+}  // namespace ptnet::python
+
+PYBIND11_MODULE(ptnet, m) {
+  namespace pp = ptnet::python;
+  m.doc() = "ptnet: simulated pressure-mat recordings from motion capture, and PressureTransferNet "
+            "(transfer a pressure sequence between bodies). Arrays: pressure float32 [T, rows, cols] kPa.";
+  m.attr("__version__") = PTNET_VERSION;
+  pybind11::register_exception_translator(pp::translate);
+  pp::bind_motion(m);
+  pp::bind_model(m);
+}

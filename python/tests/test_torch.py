@@ -1,0 +1,88 @@
+"""The PyTorch modules of ptnet_torch, loaded from `ptnet export`, give ptnet's
+output: the forward pass on the same windows within 1e-4 (normalised
+pressure), and the whole transfer (alignment, windows, threshold)."""
+import os
+import unittest
+
+import numpy as np
+
+import ptnet
+from common import MODELS, cli, fixture, torch_or_skip, workdir
+
+TOL = 1e-4  # normalised pressure (kPa / pressure_scale_kpa)
+
+
+def sequence():
+    import h5py
+    with h5py.File(fixture("data.h5"), "r") as f:
+        return f["sequences"]["p1_walking_t1__of01"][...]
+
+
+class TorchTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.torch = torch_or_skip()
+        import ptnet_torch
+        cls.pt = ptnet_torch
+        cls.dir = workdir("torch")
+        cls.seq = sequence()
+        cls.source = next(b for b in ptnet.read_bodies_csv(fixture("bodies.csv")) if b.id == "of01")
+        cls.target = ("male", 185.0, 95.0)
+        cls.weights = {}
+        for model in MODELS:
+            path = cls.weights[model] = os.path.join(cls.dir, model + ".pt")
+            cli("export", "--model", fixture(model), "--out", path, "--force")
+
+    def test_state_dict_has_ptnets_names(self):
+        for model in MODELS:
+            with self.subTest(model=model):
+                sd = self.torch.load(self.weights[model])
+                self.assertIsInstance(sd, dict)
+                net = self.pt.PressureTransferNet(self.pt.read_config(fixture(model)))
+                self.assertEqual(sorted(sd), sorted(net.state_dict()))
+                net.load_state_dict(sd)  # strict: same names and shapes
+
+    def test_forward_on_the_same_windows(self):
+        torch = self.torch
+        for model in MODELS:
+            with self.subTest(model=model):
+                net, cfg = self.pt.load(fixture(model), self.weights[model])
+                k = cfg["architecture"]["window"]
+                scale = cfg["normalisation"]["pressure_scale_kpa"]
+                x = self.seq[:3 * k] if k > 1 else self.seq[:40]
+                # ptnet: windows every k frames (each frame in one window), raw output.
+                ours = ptnet.Transfer(fixture(model), stride=k, raw=True).run(x, source=self.source, target=self.target)
+                if cfg["architecture"]["align"] == "zoom":  # the input ptnet's network sees
+                    s = self.target[1] / self.source.height_cm
+                    x = ptnet.zoom_about_centre(x, s, ptnet.body_gain(self.source.height_cm, self.source.weight_kg,
+                                                                      self.target[1], self.target[2]))
+                windows = torch.from_numpy(x / np.float32(scale)).reshape(-1, k, *x.shape[1:])
+                n = windows.shape[0]
+                sa = torch.from_numpy(self.pt.attributes(cfg, self.source)).expand(n, 3)
+                ta = torch.from_numpy(self.pt.attributes(cfg, self.target)).expand(n, 3)
+                with torch.no_grad():
+                    theirs = net(windows, sa, ta).reshape(x.shape).numpy()
+                diff = np.abs(theirs - ours / scale).max()
+                self.assertLessEqual(diff, TOL, f"{model}: max |difference| {diff} (normalised)")
+                self.assertGreater(np.abs(theirs).sum(), 0, f"{model}: an all-zero output tests nothing")
+
+    def test_whole_transfer(self):
+        for model in MODELS:
+            for raw in (False, True):
+                with self.subTest(model=model, raw=raw):
+                    net, cfg = self.pt.load(fixture(model), self.weights[model])
+                    ours = ptnet.Transfer(fixture(model), raw=raw).run(self.seq, source=self.source, target=self.target)
+                    theirs = self.pt.transfer(net, cfg, self.seq, self.source, self.target, raw=raw)
+                    scale = cfg["normalisation"]["pressure_scale_kpa"]
+                    diff = np.abs(theirs - ours).max() / scale
+                    self.assertLessEqual(diff, TOL, f"{model}: max |difference| {diff} (normalised)")
+
+    def test_zoom_alignment(self):
+        for s in (0.83, 1.0, 1.17):
+            a = self.pt.zoom_about_centre(self.seq, s, 1.3)
+            b = ptnet.zoom_about_centre(self.seq, s, 1.3)
+            self.assertLessEqual(np.abs(a - b).max(), 1e-4 * max(1.0, np.abs(b).max()))
+
+
+if __name__ == "__main__":
+    unittest.main()
