@@ -3,7 +3,6 @@
 // original; bad files and folders are one-line errors. (The PyTorch side:
 // python/tests/test_torch.py, test_roundtrip.py.)
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,10 +11,12 @@
 #include "ptnet/model_config.hpp"
 #include "ptnet/state_dict.hpp"
 #include "ptnet/transfer.hpp"
+#include "data_test_util.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;
 using namespace ptnet::testing;
+using ptnet::testing_util::error_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -23,23 +24,14 @@ namespace {
 class StateDictTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("ptnet_state_dict_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    temp_ = new testing_util::TempDir("state_dict_test");
+    dir_ = temp_->path;
     MemorySource src = synth_source(3, 2, 90);
     train(src, (dir_ / "faithful").string(), synth_options(1));
     train(src, (dir_ / "frame").string(), synth_options(1, Arch::frame, Align::zoom));
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
-  static std::string error_of(const std::function<void()>& f) {
-    try {
-      f();
-    } catch (const Error& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no error";
-    return "";
-  }
+  static void TearDownTestSuite() { delete temp_; }  // removes the folder
+  static inline testing_util::TempDir* temp_ = nullptr;
   static inline fs::path dir_;
 };
 
