@@ -58,19 +58,13 @@ void run(const TrainCli& c) {
   if (c.samples_per_epoch >= 0) o.samples_per_epoch = c.samples_per_epoch;
   if (c.val_samples >= 0) o.val_samples = c.val_samples;
   if (c.cache_mb > 0) o.cache_mb = c.cache_mb;
-  if (!c.arch.empty()) {
-    o.model.arch = parse_arch(c.arch);
-    // The window networks see `window` frames as channels: the paper's 30,
-    // not the frame network's 1 of the fast preset (unless --window says so).
-    if (o.model.arch != Arch::frame) o.model.window = kWindowFrames;
-  }
+  if (!c.arch.empty()) o.set_arch(parse_arch(c.arch));  // --window below may still set the window
   if (!c.align.empty()) o.model.align = parse_align(c.align);
   if (!c.channels.empty()) o.model.channels = parse_channels(c.channels);
   if (c.hidden) o.model.hidden = c.hidden;
   if (c.latent) o.model.latent = c.latent;
   if (c.window) o.model.window = c.window;
   if (c.context >= 0) o.model.context = c.context;
-  if (o.model.arch != Arch::frame) o.contact_weight = 0;  // the contact head is the frame network's
   if (c.contact_weight >= 0) o.contact_weight = c.contact_weight;
   o.model.contact = o.contact_weight > 0;
   if (c.crop_rows >= 0) o.crop_rows = c.crop_rows;

@@ -70,10 +70,8 @@ inline MemorySource synth_source(int retargeted = 6, int motions = 3, int frames
 // The paper's network (faithful, no alignment) unless told otherwise.
 inline TrainOptions synth_options(int epochs = 6, Arch arch = Arch::faithful, Align align = Align::none) {
   TrainOptions o = TrainOptions::from_preset("fast");
-  o.model.arch = arch;
+  o.set_arch(arch);  // a window network: 30 frames, no contact head
   o.model.align = align;
-  o.model.window = arch == Arch::frame ? 1 : kWindowFrames;  // the frame network works per frame
-  o.model.contact = o.model.contact && arch == Arch::frame;  // the contact head is the frame network's
   o.model.channels = {4, 8, 8};
   o.model.hidden = 32;
   o.model.latent = 32;

@@ -134,6 +134,10 @@ struct TrainOptions {
   // values are set in one place, from_preset() (src/train/train.cpp);
   // summary() describes them (`ptnet train --help`).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
+  // Switches the architecture. A window network (faithful, skip, residual)
+  // takes the paper's 30-frame window and has no contact head (both are the
+  // frame network's); the frame network keeps the preset's window and head.
+  void set_arch(Arch arch);
   // One line naming the architecture and schedule ("frame 16/32/48 on zoom-aligned
   // input, window 1, batch 64, lr 0.003 halved every 4 epochs, ..."): the
   // presets are described from their values, never by hand.

@@ -66,6 +66,14 @@ TrainOptions TrainOptions::from_preset(const std::string& name) {
   throw Error("--preset: expected paper, fast or full, found \"" + name + "\"");
 }
 
+void TrainOptions::set_arch(Arch arch) {
+  model.arch = arch;
+  if (arch == Arch::frame) return;
+  model.window = kWindowFrames;
+  model.contact = false;
+  contact_weight = 0;
+}
+
 std::string TrainOptions::summary() const {
   std::ostringstream s;
   s << arch_name(model.arch) << " " << model.channels[0] << "/" << model.channels[1] << "/" << model.channels[2]
