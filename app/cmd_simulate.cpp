@@ -33,7 +33,7 @@ struct SimulateCli {
   std::string units = "auto", up = "y";
   int rows = 80, cols = 28;
   double pitch_m = 0.02;
-  double compliance_mm = 10;
+  double compliance_mm = SimOptions{}.compliance_m * 1000;
   int subsamples = 3;
   double crosstalk = -1, saturation_kpa = -1, noise_kpa = -1, threshold_kpa = -1, quantum_kpa = -1;
   bool ideal = false;

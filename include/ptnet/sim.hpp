@@ -29,10 +29,13 @@
 //     degrees) have their feet pitched back to the canonical sole.
 //     The floor is z = 0, corrected for capture drift: the lower envelope of
 //     the planted (slow, level) soles over floor_window_s, bounded to +/- 25 cm.
+//     Like the mat's axis and centre, it is decided once per source motion
+//     (on its copy at a reference height) and scaled to every copy, so that
+//     which frames touch the ground does not depend on the body.
 //  2. depth from below: the lowest body surface above each of S x S samples
 //     per cell (foot soles, lower surfaces of the segment capsules).
 //  3. contact: a frame has ground contact when some surface lies within the
-//     compliance band (default 10 mm) of the ground; otherwise it is airborne.
+//     compliance band (default 20 mm) of the ground; otherwise it is airborne.
 //  4. load: F = m (g + a_z), a_z the low-passed vertical acceleration of the
 //     segment-mass centre of mass, clamped at 0; zero with no contact. The body
 //     sinks into an elastic foundation (sole tissue and mat foam, linear
@@ -83,7 +86,8 @@ struct SimOptions {
   MatSpec mat;                           // 80 x 28 cells of 0.02 m
   Placement placement = Placement::fixed;  // fixed: a physical mat; follow: re-centred each frame
   double follow_smoothing_s = 1.0;       // follow: Gaussian sigma of the pelvis path smoothing (s)
-  double compliance_m = 0.010;           // contact: some surface within this height of the ground
+  double compliance_m = 0.020;           // contact: some surface within this height of the ground (mat and
+                                         // sole compliance, ~1 cm, plus the capture's foot-height error)
   double stiffness_kpa_per_mm = 6.0;     // elastic foundation: kPa per mm of penetration (sets the sink depth)
   double max_sink_m = 0.025;             // the sink level stays within this of the lowest surface point
   double floor_window_s = 1.0;           // capture floor followed over this window (+/- 25 cm; 0: z = 0 is the floor)
@@ -104,16 +108,20 @@ struct MotionPlacement {
   Eigen::Vector2d axis{1, 0}, left{0, 1};
   Eigen::Vector2d anchor{0, 0};          // frame 0's pelvis (x, y): retarget scales the root path about it
   std::vector<Eigen::Vector2d> centre;   // [T] world (x, y), m
+  std::vector<double> floor;             // [T] height of the capture floor under the motion, m (empty: z = 0)
   // The placement of a copy whose horizontal root path is this motion's
   // scaled by `ratio` about `anchor` (a retargeted copy: ratio =
-  // retarget_scale(source, height_cm)): same axis, centres scaled.
+  // retarget_scale(source, height_cm)): same axis, centres and floor scaled.
   MotionPlacement scaled(double ratio) const;
 };
 
 // The placement of `motion` for options.placement (fixed: the pelvis path's
 // bounding box centred; follow: its Gaussian-smoothed path, sigma
-// options.follow_smoothing_s). Throws Error for an empty motion.
+// options.follow_smoothing_s) and its floor (options.floor_window_s; found on
+// the motion retargeted to kFloorReferenceHeightCm, scaled back). Throws
+// Error for an empty motion.
 MotionPlacement place_motion(const Motion& motion, const SimOptions& options);
+inline constexpr double kFloorReferenceHeightCm = 170.0;
 // The placement of source's copy retargeted onto a body of height_cm:
 // place_motion(source, options).scaled(retarget_scale(source, height_cm)).
 MotionPlacement place_copy(const Motion& source, double height_cm, const SimOptions& options);

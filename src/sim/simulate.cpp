@@ -59,26 +59,18 @@ PressureSequence simulate(const Motion& input, const Body& body, const SimOption
                           const MotionPlacement& place, std::vector<FrameTrace>* trace) {
   check_options(options);
   if (input.size() == 0) throw Error("simulate: motion '" + input.name + "' has no frames");
-  if (place.centre.size() != std::size_t(input.size()))
+  if (place.centre.size() != std::size_t(input.size()) || !(place.floor.empty() || place.floor.size() == place.centre.size()))
     throw Error("simulate: motion '" + input.name + "' has " + std::to_string(input.size()) +
-                " frames but its placement " + std::to_string(place.centre.size()));
-  // Feet whose toe joint sits off the canonical sole (rig conventions) are
-  // pitched back to it; canonical motions are used as they are.
-  const std::array<double, 2> pitch = detail::foot_pitch_offsets(input);
-  Motion corrected;
-  const bool correct = std::abs(pitch[0]) > 0.03 || std::abs(pitch[1]) > 0.03;  // ~2 degrees
-  if (correct) {
-    corrected = input;
-    for (Pose& p : corrected.frames) detail::correct_foot_pitch(p, pitch);
-  }
-  const Motion& motion = correct ? corrected : input;
+                " frames but its placement " + std::to_string(place.centre.size()) + " centres and " +
+                std::to_string(place.floor.size()) + " floor heights");
+  const Motion motion = detail::pitch_corrected(input);
   const int T = motion.size();
   const MatSpec& mat = options.mat;
   PressureSequence seq(mat, T, motion.fps);
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
   const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
-  const std::vector<double> floor = detail::floor_track(motion, body, options.floor_window_s, 0.25);
+  const std::vector<double> floor = place.floor.empty() ? std::vector<double>(std::size_t(T), 0.0) : place.floor;
   detail::Rasteriser raster(mat, options.subsamples, options.compliance_m, options.max_sink_m);
   std::vector<float> scratch(mat.cells());
   std::uint64_t rng = options.seed ^ 0x5bd1e9955bd1e995ULL;
