@@ -6,6 +6,7 @@
 #include <torch/csrc/distributed/c10d/PrefixStore.hpp>
 #include <torch/csrc/distributed/c10d/ProcessGroupGloo.hpp>
 #include <torch/csrc/distributed/c10d/TCPStore.hpp>
+#include <glog/logging.h>
 #include <torch/torch.h>
 
 #include <algorithm>
@@ -83,6 +84,9 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
   if (o.rendezvous.empty()) throw Error("--rendezvous: needed with --world-size " + std::to_string(o.world_size));
   if (!(o.timeout_s > 0)) throw Error("--dist-timeout: must be > 0, found " + number_text(o.timeout_s));
   const Address a = parse_rendezvous(o.rendezvous);
+  // c10d logs its connection retries and timeouts through glog on stderr;
+  // every failure here becomes one Error line instead.
+  FLAGS_minloglevel = google::GLOG_FATAL;
   auto impl = std::make_unique<Impl>();
   impl->where = o.rendezvous;
   impl->timeout = std::chrono::milliseconds(std::int64_t(o.timeout_s * 1000));
@@ -165,7 +169,8 @@ void Communicator::lost(const std::string& what, const std::string& detail) {
     c10d::Store& store = *impl_->store;
     store.set("ptnet/survivor/" + std::to_string(rank_), bytes_of("1"));
     const auto deadline = Clock::now() + std::min<Clock::duration>(kSurvivorWindow, impl_->timeout);
-    do {
+    if (size_ == 2) missing = {1 - rank_};  // the store answered: the other rank is the lost one
+    else do {
       missing.clear();
       for (int r = 0; r < size_; ++r)
         if (!store.check({"ptnet/survivor/" + std::to_string(r)})) missing.push_back(r);
