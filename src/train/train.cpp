@@ -618,6 +618,10 @@ void log_setup(const Run& run, const WindowIndex& index, const PressureTransferN
           " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
           (run.comm.distributed() ? ", " + std::to_string(run.comm.size()) + " ranks" : "") +
           (run.o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
+  const int micro_batches = (run.o.batch + run.o.micro_batch - 1) / run.o.micro_batch;
+  if (run.comm.size() > micro_batches)
+    run.log("train: warning: " + std::to_string(micro_batches) + " micro-batch(es) per step for " +
+            std::to_string(run.comm.size()) + " ranks: some ranks idle (set --micro-batch to at most --batch / ranks)");
 }
 
 // BatchNorm running statistics of a step whose micro-batches are spread over
