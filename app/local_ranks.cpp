@@ -4,6 +4,7 @@
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -109,6 +110,7 @@ void run_local_ranks(int nproc, double grace_s) {
     }
     if (pid == 0) {
       for (int sig : {SIGINT, SIGTERM, SIGHUP}) ::signal(sig, SIG_DFL);
+      ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // the launcher killed (even -9): the ranks stop too
       ::execv("/proc/self/exe", argv.data());
       ::_exit(127);
     }

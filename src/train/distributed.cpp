@@ -121,7 +121,9 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
     const std::string theirs = text_of(store.get("ptnet/world_size"));  // waits up to the timeout
     if (theirs != std::to_string(o.world_size))
       refuse("--world-size: " + me + " was started with " + std::to_string(o.world_size) + ", rank 0 with " + theirs);
-    if (store.add("ptnet/rank/" + std::to_string(o.rank), 1) > 1) refuse("--rank: " + me + " was started twice");
+    if (store.add("ptnet/rank/" + std::to_string(o.rank), 1) > 1)
+      refuse("--rank: " + me + " was started twice" +
+             (a.tcp ? std::string() : " (or " + a.path + " is left from an earlier run: remove it)"));
     store.set("ptnet/joined/" + std::to_string(o.rank), bytes_of("1"));
     const auto deadline = Clock::now() + impl->timeout;
     for (int r = 0; r < o.world_size;) {
