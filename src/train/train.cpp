@@ -878,7 +878,9 @@ void check_ranks_agree(const Run& run, const WindowIndex& index, const PressureT
     const std::uint64_t h = std::hash<std::string>{}(text);
     return std::array<double, 2>{double(h >> 32), double(h & 0xffffffffu)};
   };
-  const auto data = halves(run.digest + options_json(run.o).dump()), weights = halves(weights_digest(*net));
+  json options = options_json(run.o);
+  options.erase("threads");  // hosts may differ in cores
+  const auto data = halves(run.digest + options.dump()), weights = halves(weights_digest(*net));
   run.comm.check_same({data[0], data[1], double(index.train_size()), double(index.val_size()), double(s.epoch),
                        weights[0], weights[1]},
                       "the data, the options, the resumed epoch or the starting weights");
