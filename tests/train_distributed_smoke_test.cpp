@@ -62,11 +62,12 @@ std::vector<std::pair<std::string, torch::Tensor>> weights_of(const fs::path& mo
   return out;
 }
 
-// A ptnet process in the background, its stderr into `err`.
+// A ptnet process in the background, its stderr into `err`. Its ranks
+// meet through a file:// rendezvous, on the loopback interface.
 pid_t spawn(const std::string& args, const fs::path& err) {
   const pid_t pid = ::fork();
   if (pid == 0) {
-    const std::string cmd = "exec '" + std::string(PTNET_BINARY) + "' " + args + " 2>'" + err.string() + "' >/dev/null";
+    const std::string cmd = "GLOO_SOCKET_IFNAME=lo exec '" + std::string(PTNET_BINARY) + "' " + args + " 2>'" + err.string() + "' >/dev/null";
     ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
