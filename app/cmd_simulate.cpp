@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <tuple>
 
 #include "command.hpp"
 #include "ptnet/body_spec.hpp"
@@ -39,7 +40,17 @@ struct SimulateCli {
   bool ideal = false;
   bool no_floor = false;
   bool force = false;
+  std::string shard;  // "K/N"
 };
+
+// --shard K/N: 0 <= K < N.
+std::pair<int, int> parse_shard(const std::string& text) {
+  int k = -1, n = -1;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 || k < 0 || k >= n)
+    throw Error("--shard: expected K/N with 0 <= K < N (e.g. 0/4), found " + escaped(text));
+  return {k, n};
+}
 
 void run(const SimulateCli& c) {
   const bool quiet = globals().quiet;
@@ -55,6 +66,7 @@ void run(const SimulateCli& c) {
   o.force = c.force;
   o.noise_floor = !c.no_floor;
   o.generator = std::string("ptnet ") + PTNET_VERSION + " simulate";
+  if (!c.shard.empty()) std::tie(o.shard_index, o.shard_count) = parse_shard(c.shard);
   SimOptions& s = o.sim;
   s.mat = MatSpec{c.rows, c.cols, c.pitch_m};
   s.placement = parse_placement(c.placement);
@@ -83,7 +95,8 @@ void run(const SimulateCli& c) {
   }
   if (!quiet)
     std::cerr << "simulate: " << clips.size() << " clips x " << bodies.size() << " bodies = "
-              << clips.size() * bodies.size() << " sequences\n";
+              << clips.size() * bodies.size() << " sequences"
+              << (o.shard_count > 1 ? ", shard " + c.shard : std::string()) << "\n";
   o.progress = print;
   const SimulateDatasetSummary r = simulate_dataset(clips, bodies, c.out, o);
   if (!quiet) {
@@ -138,6 +151,9 @@ void setup(CLI::App& app) {
   cmd->add_option("--quantum-kpa", c->quantum_kpa, "ADC step, 0: off (default 0.1)")->check(in_range(0, 1e6));
   cmd->add_flag("--no-floor", c->no_floor,
                 "Skip the second-seed copies of original-body sequences (/floor: the noise floor of evaluate)");
+  cmd->add_option("--shard", c->shard,
+                  "K/N: only the K-th (0-based) of N contiguous blocks of the clip x body list; "
+                  "ptnet merge joins the N files (docs/distributed.md)");
   cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");
   cmd->callback([c] { run(*c); });
 }

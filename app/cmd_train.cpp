@@ -3,9 +3,12 @@
 //   ptnet train --data data.h5 --out model/ --preset fast
 //   ptnet train --data data.h5 --out model/ --resume            # continue
 //   ptnet train --data finetune.h5 --out tuned/ --init model/ --identity-pairs   # fine-tune
+//   ptnet train --data data.h5 --out model/ --nproc 2                # 2 local ranks (docs/distributed.md)
+//   ptnet train ... --world-size 4 --rank 1 --rendezvous tcp://node1:29500
 #include <sstream>
 
 #include "command.hpp"
+#include "local_ranks.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/train.hpp"
 
@@ -22,6 +25,9 @@ struct TrainCli {
   double lr = 0, cache_mb = 0;
   long long seed = -1;
   bool resume = false, force = false, no_contact_threshold = false, identity_pairs = false;
+  int nproc = 0, world_size = 1, rank = 0;
+  std::string rendezvous;
+  double dist_timeout_s = 60;
 };
 
 std::array<int, 3> parse_channels(const std::string& text) {
@@ -45,6 +51,12 @@ std::array<int, 3> parse_channels(const std::string& text) {
 }
 
 void run(const TrainCli& c) {
+  if (c.nproc > 0 && (c.world_size != 1 || c.rank != 0 || !c.rendezvous.empty()))
+    throw Error("--nproc starts its own ranks; it excludes --world-size, --rank and --rendezvous");
+  if (c.nproc > 1) {
+    run_local_ranks(c.nproc, /*grace_s=*/c.dist_timeout_s);
+    return;
+  }
   TrainOptions o = TrainOptions::from_preset(c.preset);
   if (c.epochs) o.epochs = c.epochs;
   if (c.batch) o.batch = c.batch;
@@ -79,7 +91,11 @@ void run(const TrainCli& c) {
   o.resume = c.resume;
   o.fit_contact_threshold = !c.no_contact_threshold;
   o.force = c.force;
-  o.progress = train_progress();
+  o.world_size = c.world_size;
+  o.rank = c.rank;
+  o.rendezvous = c.rendezvous;
+  o.dist_timeout_s = c.dist_timeout_s;
+  if (c.rank == 0) o.progress = train_progress();  // the other ranks report errors only
   if (o.resume && !o.init.empty()) throw Error("--resume and --init exclude each other");
   auto source = open_dataset_source(c.data);
   train(*source, c.out, o);
@@ -149,6 +165,20 @@ void setup(CLI::App& app) {
                 "A motion recorded on one body only trains as the pair (body -> same body): for "
                 "fine-tuning on real recordings (ptnet import --dataset ... --subjects ...)");
   cmd->add_flag("--force", opt->force, "Overwrite an existing model folder");
+  cmd->add_option("--nproc", opt->nproc,
+                  "Start this many ranks on this machine (127.0.0.1, a free port) and wait for them; "
+                  "progress from rank 0 (docs/distributed.md)")
+      ->check(CLI::Range(1, 256));
+  cmd->add_option("--world-size", opt->world_size, "Ranks of a distributed run (default 1)")
+      ->check(CLI::Range(1, 65536));
+  cmd->add_option("--rank", opt->rank, "This process's rank, 0 .. world size - 1 (rank 0 writes the model folder)")
+      ->check(CLI::Range(0, 65535));
+  cmd->add_option("--rendezvous", opt->rendezvous,
+                  "tcp://HOST:PORT (rank 0 listens on PORT of HOST) or file://PATH (a fresh file on a shared "
+                  "filesystem)");
+  cmd->add_option("--dist-timeout", opt->dist_timeout_s,
+                  "Seconds any rank waits for the others (joining, each all-reduce) before failing (default 60)")
+      ->check(in_range(0.1, 86400));
   cmd->callback([opt]() { run(*opt); });
 }
 

@@ -3,7 +3,7 @@
 # Does nothing (and needs no network) when everything is present.
 set -euo pipefail
 packages=(cmake g++ make ccache pkg-config
-          libtorch-dev libhdf5-dev hdf5-tools libeigen3-dev libcli11-dev
+          libtorch-dev libgloo-dev libhdf5-dev hdf5-tools libeigen3-dev libcli11-dev
           nlohmann-json3-dev zlib1g-dev libpng-dev libgif-dev libgtest-dev libgmock-dev
           libbenchmark-dev libopenblas0-openmp  # OpenBLAS: LibTorch falls back to netlib BLAS (~25x slower) without it
           chromium fonts-dejavu-core  # the report-page tests load index.html in headless chromium

@@ -104,6 +104,15 @@ class Dataset {
   std::unique_ptr<Impl> impl_;
 };
 
+// Merges datasets into one at `out_path` (atomically; an existing file needs
+// `force`): the shards of one `ptnet simulate --shard K/N` run, or any
+// datasets with the same mat, fps, generator, bodies and config. Shards must
+// all be present, once each (any order); "shard" is removed from the config,
+// so the result has the unsharded run's sequences (with their /floor
+// copies), attributes and bodies. A sequence name in two inputs is an Error
+// naming both. Returns the number of sequences written.
+int merge_datasets(const std::vector<std::string>& inputs, const std::string& out_path, bool force);
+
 // A synthetic walk for tests, benchmarks and figures (not the simulator):
 // a walker crossing the mat from the near end (last row) towards row 0,
 // left foot on the left columns, heel-to-toe roll-over blobs whose size

@@ -107,6 +107,13 @@ struct SimulateDatasetOptions {
   bool noise_floor = true;        // /floor/<name> for sequences on original bodies
   std::string generator = "ptnet simulate";
   std::string config_json;        // "" : built from the options
+  // Shard `shard_index` of `shard_count` (ptnet simulate --shard K/N): the
+  // K-th contiguous block of the clip x body job list (jobs [J K / N,
+  // J (K + 1) / N)); every clip is still loaded and checked. The config gets
+  // "shard": "K/N"; `ptnet merge` of the N shards (merge_datasets, data.hpp)
+  // gives the unsharded file's sequences, attributes and bodies.
+  int shard_index = 0;
+  int shard_count = 1;
   // Counts as work completes: {"load", done, total, "clips"}, then
   // {"simulate", done, total, "sequences"}. Calls are serialised but may come
   // from worker threads.

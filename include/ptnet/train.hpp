@@ -122,6 +122,16 @@ struct TrainOptions {
   std::string init;                 // start from this model folder's weights
   bool identity_pairs = false;      // WindowOptions::identity_pairs (fine-tuning on recordings)
   bool force = false;               // overwrite an existing model folder
+  // Data-parallel training over `world_size` processes (docs/distributed.md):
+  // every optimiser step's micro-batches are dealt round-robin to the ranks
+  // (micro-batch m to rank m % world_size), gradients and BatchNorm
+  // statistics are summed with a Gloo all-reduce, so N ranks take the same
+  // steps as one process with the same --batch. Rank 0 alone writes the
+  // model folder; with --resume every rank reads it (a shared filesystem).
+  int world_size = 1;
+  int rank = 0;                     // 0 .. world_size - 1
+  std::string rendezvous;           // tcp://HOST:PORT (rank 0 listens) or file://PATH
+  double dist_timeout_s = 60;       // bound on joining and on every all-reduce
   // Reports (the library prints nothing itself): after each optimiser step
   // a count {what "train", done/total training windows of the epoch, unit
   // "windows", step/steps = epoch (1-based)/epochs}; the setup, each epoch
@@ -152,6 +162,9 @@ struct TrainResult {
   double val_rmse_kpa = 0;    // of the best weights on the validation windows
   bool stopped_early = false;
   double seconds = 0;
+  // Distributed runs: this rank's all-reduces (count, payload bytes, time).
+  long long allreduce_calls = 0, allreduce_bytes = 0;
+  double allreduce_seconds = 0;
 };
 
 // Trains into `out_dir` (created; an existing non-empty folder needs force or

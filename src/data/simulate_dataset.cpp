@@ -126,13 +126,13 @@ std::vector<SequenceMeta> sequence_metas(const std::vector<ClipSource>& clips, c
 void simulate_chunks(const std::vector<Motion>& motions, const std::vector<MotionPlacement>& places,
                      const std::vector<BodySpec>& bodies, const std::vector<Body>& built,
                      const std::vector<SequenceMeta>& metas, const SimulateDatasetOptions& options, int threads,
-                     DatasetWriter& writer, SimulateDatasetSummary& summary) {
-  const int nb = int(bodies.size()), total = int(metas.size());
+                     int begin, int end, DatasetWriter& writer, SimulateDatasetSummary& summary) {
+  const int nb = int(bodies.size()), total = end - begin;
   const int chunk = options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads);
   const auto with_floor = [&](int j) { return options.noise_floor && bodies[std::size_t(j % nb)].role == "original"; };
   int done = 0;
-  for (int j0 = 0; j0 < total; j0 += chunk) {
-    const int j1 = std::min(total, j0 + chunk);
+  for (int j0 = begin; j0 < end; j0 += chunk) {
+    const int j1 = std::min(end, j0 + chunk);
     std::vector<Motion> retargeted(std::size_t(j1 - j0));
     std::vector<MotionPlacement> placed(std::size_t(j1 - j0));
     parallel_for(j1 - j0, threads, [&](int k) {
@@ -165,8 +165,25 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
         writer.add_floor(metas[std::size_t(j)].name, seqs[std::size_t(floor_job[std::size_t(j - j0)])]);
       summary.frames += s.frames();
     }
-    done = j1;
+    done = j1 - begin;
   }
+}
+
+// --shard K/N: the jobs [J K / N, J (K + 1) / N) of J, and "shard": "K/N"
+// at the end of the config (ptnet merge removes it).
+std::pair<int, int> shard_jobs(int jobs, const SimulateDatasetOptions& o, const std::string& out_path,
+                               std::string& config_json) {
+  const int k = o.shard_index, n = o.shard_count;
+  if (n < 1 || k < 0 || k >= n)
+    throw Error("--shard: expected K/N with 0 <= K < N, found " + std::to_string(k) + "/" + std::to_string(n));
+  if (n == 1) return {0, jobs};
+  if (n > jobs)
+    throw Error::in(out_path, std::to_string(n) + " shards of " + std::to_string(jobs) +
+                                  " sequences: at most one shard per sequence");
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(config_json);
+  j["shard"] = std::to_string(k) + "/" + std::to_string(n);
+  config_json = j.dump();
+  return {int(std::int64_t(jobs) * k / n), int(std::int64_t(jobs) * (k + 1) / n)};
 }
 
 SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
@@ -189,10 +206,11 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
   info.fps = options.fps;
   info.generator = options.generator;
   info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
+  const auto [begin, end] = shard_jobs(int(metas.size()), options, out_path, info.config_json);
   DatasetWriter writer(out_path, info, bodies, options.force);
-  simulate_chunks(motions, places, bodies, built, metas, options, threads, writer, summary);
+  simulate_chunks(motions, places, bodies, built, metas, options, threads, begin, end, writer, summary);
   writer.commit();
-  summary.sequences = int(metas.size());
+  summary.sequences = end - begin;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

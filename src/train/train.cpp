@@ -1,6 +1,6 @@
 // The training loop: batches from the lazy window index, Adam with a step
 // learning-rate schedule, early stopping, atomic checkpoints, exact resume.
-// The only Torch translation unit of the train stage.
+// With distributed.cpp, the only Torch translation units of the train stage.
 //
 // Dimension legend: N windows in a batch, T window frames, H x W mat cells,
 // A = 3 attributes.
@@ -20,6 +20,7 @@
 #include "ptnet/model.hpp"
 #include "ptnet/zip_check.hpp"
 #include "ptnet/train.hpp"
+#include "distributed.hpp"
 #include "window_index.hpp"
 
 namespace ptnet {
@@ -104,7 +105,8 @@ json options_json(const TrainOptions& o) {
               {"contact_weight", o.contact_weight},
               {"init", o.init},            {"val_fraction", 0.1},
               {"fit_contact_threshold", o.fit_contact_threshold},
-              {"identity_pairs", o.identity_pairs}, {"crop_rows", o.crop_rows}};
+              {"identity_pairs", o.identity_pairs}, {"crop_rows", o.crop_rows},
+              {"world_size", o.world_size}};
 }
 
 void check_options(const TrainOptions& o) {
@@ -279,8 +281,10 @@ double binary_r2_from_counts(double mismatches, double ones, double n) {
   return 1 - mismatches / ss_tot;
 }
 
+// Distributed: the micro-batches are dealt round-robin to the ranks and the
+// sums all-reduced, so every rank gets the whole validation set's result.
 ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const WindowIndex& index,
-                         const TrainOptions& o, double scale_kpa, bool baselines) {
+                         const TrainOptions& o, double scale_kpa, bool baselines, Communicator& comm) {
   const std::int64_t total = index.val_size();
   const std::int64_t n = o.val_samples > 0 ? std::min(o.val_samples, total) : total;
   net->eval();
@@ -291,8 +295,13 @@ ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const Windo
   std::vector<double> mismatches(kCandidates, 0.0);
   std::int64_t count = 0;
   std::vector<WindowRef> refs;
+  std::int64_t chunk = 0;  // micro-batches so far
   auto flush = [&]() {
     if (refs.empty()) return;
+    if (chunk++ % comm.size() != comm.rank()) {
+      refs.clear();
+      return;
+    }
     Batch b = batcher.load(refs, baselines);
     auto out = net->forward(b.x, b.sa, b.ta);
     sum += torch::mse_loss(out, b.y, torch::Reduction::Sum).item<double>();
@@ -321,6 +330,12 @@ ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const Windo
     if (int(refs.size()) == std::min(o.batch, o.micro_batch)) flush();
   }
   flush();
+  std::vector<double> sums{sum, copy_sum, scale_sum, zero_sum, zoom_sum, ones, copy_mismatches, double(count)};
+  sums.insert(sums.end(), mismatches.begin(), mismatches.end());
+  comm.allreduce(sums, "the validation all-reduce");
+  sum = sums[0], copy_sum = sums[1], scale_sum = sums[2], zero_sum = sums[3], zoom_sum = sums[4];
+  ones = sums[5], copy_mismatches = sums[6], count = std::int64_t(sums[7]);
+  std::copy(sums.begin() + 8, sums.end(), mismatches.begin());
   ValResult r;
   r.mse = sum / double(count);
   r.rmse_kpa = std::sqrt(r.mse) * scale_kpa;
@@ -466,16 +481,31 @@ struct Run {
   ModelDir md;        // written to config.json
   ModelDir previous;  // --resume: the folder's config; --init: the other model's
   std::string digest;
+  Communicator& comm;  // the ranks (a world of one when not distributed)
+  // Distributed: the best weights so far, kept by the ranks that do not
+  // write the folder (they may not see rank 0's model.pt).
+  std::vector<torch::Tensor> best_snapshot;
 
-  Run(const PressureSource& src, const std::string& out_dir, const TrainOptions& options)
+  Run(const PressureSource& src, const std::string& out_dir, const TrainOptions& options, Communicator& c)
       : source(src), o(options), dir(out_dir), config_path((dir / "config.json").string()),
         ckpt_path((dir / "checkpoint.pt").string()), best_path((dir / "model.pt").string()),
-        device(parse_device(options.device)) {}
+        device(parse_device(options.device)), comm(c) {}
+  bool writes() const { return comm.rank() == 0; }  // rank 0 alone writes the model folder
   void log(const std::string& line) const {
     if (o.progress) o.progress(progress_line("train", line));
   }
-  void write_config() { write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true); }
+  void write_config() {
+    if (writes()) write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
+  }
 };
+
+// Parameters and buffers, in a fixed order (the best-weights snapshot).
+std::vector<torch::Tensor> weight_tensors(const PressureTransferNet& net) {
+  std::vector<torch::Tensor> out;
+  for (const auto& p : net->parameters()) out.push_back(p);
+  for (const auto& b : net->buffers()) out.push_back(b);
+  return out;
+}
 
 // The architecture from the options, the resumed folder or the --init model,
 // checked against the data's mat and frame rate and the available memory.
@@ -570,7 +600,7 @@ State start_or_resume(Run& run, PressureTransferNet& net, torch::optim::Adam& op
     // A kill between the checkpoint's rename and config.json's leaves the
     // config one epoch behind: that checkpoint passed its CRCs and is taken.
     if (recorded_epoch != s.epoch - 1) check_weights_digest(*net, recorded, run.ckpt_path, run.config_path);
-  } else {
+  } else if (run.writes()) {
     save_checkpoint(run.ckpt_path, net, optimizer, s);  // epoch 0: the initial weights
     record_digest(run.md, "checkpoint.pt", weights_digest(*net), 0);
     run.write_config();
@@ -586,13 +616,77 @@ void log_setup(const Run& run, const WindowIndex& index, const PressureTransferN
           std::to_string(m.channels[0]) + "/" + std::to_string(m.channels[1]) + "/" +
           std::to_string(m.channels[2]) + "), pressure scale " + fmt("%.3g", run.md.norm.pressure_scale_kpa) +
           " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
+          (run.comm.distributed() ? ", " + std::to_string(run.comm.size()) + " ranks" : "") +
           (run.o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
+  const int micro_batches = (run.o.batch + run.o.micro_batch - 1) / run.o.micro_batch;
+  if (run.comm.size() > micro_batches)
+    run.log("train: warning: " + std::to_string(micro_batches) + " micro-batch(es) per step for " +
+            std::to_string(run.comm.size()) + " ranks: some ranks idle (set --micro-batch to at most --batch / ranks)");
 }
 
+// BatchNorm running statistics of a step whose micro-batches are spread over
+// the ranks. One process updates them micro-batch after micro-batch:
+// r <- (1 - a) r + a x_m, so after M of them r = (1 - a)^M r0 + sum_m
+// (1 - a)^(M-1-m) a x_m. Each rank runs its micro-batches from zeroed
+// buffers (the update is then a x_m), adds them up with that decay, and the
+// sum over the ranks (all-reduced with the gradients) completes the formula.
+class SharedBatchNorm {
+ public:
+  explicit SharedBatchNorm(torch::nn::Module& net) {
+    for (const auto& m : net.modules(/*include_self=*/false))
+      if (auto* bn = dynamic_cast<torch::nn::BatchNorm2dImpl*>(m.get()); bn && bn->options.track_running_stats())
+        layers_.push_back(bn);
+  }
+  void begin_step() {
+    start_.clear();
+    sums_.clear();
+    for (auto* bn : layers_) {
+      start_.push_back({bn->running_mean.clone(), bn->running_var.clone(), bn->num_batches_tracked.clone()});
+      sums_.push_back(torch::zeros_like(bn->running_mean));
+      sums_.push_back(torch::zeros_like(bn->running_var));
+    }
+  }
+  void before_micro_batch() {
+    torch::NoGradGuard no_grad;
+    for (auto* bn : layers_) bn->running_mean.zero_(), bn->running_var.zero_();
+  }
+  void after_micro_batch(int m, int count) {
+    torch::NoGradGuard no_grad;
+    for (std::size_t i = 0; i < layers_.size(); ++i) {
+      const double decay = std::pow(1 - momentum(i), count - 1 - m);
+      sums_[2 * i].add_(layers_[i]->running_mean, decay);
+      sums_[2 * i + 1].add_(layers_[i]->running_var, decay);
+    }
+  }
+  std::vector<torch::Tensor>& sums() { return sums_; }  // all-reduced by the caller
+  void end_step(int count) {
+    torch::NoGradGuard no_grad;
+    for (std::size_t i = 0; i < layers_.size(); ++i) {
+      const double decay = std::pow(1 - momentum(i), count);
+      layers_[i]->running_mean.copy_(start_[i][0] * decay + sums_[2 * i]);
+      layers_[i]->running_var.copy_(start_[i][1] * decay + sums_[2 * i + 1]);
+      layers_[i]->num_batches_tracked.copy_(start_[i][2] + count);
+    }
+  }
+
+ private:
+  double momentum(std::size_t i) const { return layers_[i]->options.momentum().value_or(0.1); }
+  std::vector<torch::nn::BatchNorm2dImpl*> layers_;
+  std::vector<std::array<torch::Tensor, 3>> start_;
+  std::vector<torch::Tensor> sums_;
+};
+
 // One epoch of optimiser steps (epoch0 0-based); the mean training loss.
+// Distributed: each rank runs the micro-batches m with m % ranks == rank;
+// the gradients (each micro-batch's loss already weighted by its share of
+// the whole batch), the BatchNorm statistics and the loss are summed over
+// the ranks before the step.
 double train_epoch(const Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer, Batcher& batcher,
                    const WindowIndex& index, int epoch0, const State& s) {
   const TrainOptions& o = run.o;
+  Communicator& comm = run.comm;
+  SharedBatchNorm shared_bn(*net);
+  const std::vector<torch::Tensor> params = net->parameters();
   net->train();
   const auto order = epoch_order(o, index, epoch0);
   double loss_sum = 0;
@@ -607,9 +701,14 @@ double train_epoch(const Run& run, PressureTransferNet& net, torch::optim::Adam&
     optimizer.zero_grad();
     double l = 0;
     const std::size_t micro = std::size_t(std::max(1, o.micro_batch));
+    const int micro_batches = int((refs.size() + micro - 1) / micro);
+    if (comm.distributed()) shared_bn.begin_step();
     for (std::size_t m = 0; m < refs.size(); m += micro) {
+      const int k = int(m / micro);
+      if (k % comm.size() != comm.rank()) continue;
       const std::vector<WindowRef> part(refs.begin() + std::ptrdiff_t(m),
                                         refs.begin() + std::ptrdiff_t(std::min(refs.size(), m + micro)));
+      if (comm.distributed()) shared_bn.before_micro_batch();
       Batch b = batcher.load(part);
       if (o.crop_rows > 0 && run.md.model.arch == Arch::frame) crop_to_pressure(b, o.crop_rows);
       auto loss = loss_fn(o, net->forward_parts(b.x, b.sa, b.ta), b.y) * (double(part.size()) / double(refs.size()));
@@ -621,6 +720,19 @@ double train_epoch(const Run& run, PressureTransferNet& net, torch::optim::Adam&
                     ") is kept in " + run.ckpt_path);
       loss.backward();
       l += part_loss;
+      if (comm.distributed()) shared_bn.after_micro_batch(k, micro_batches);
+    }
+    if (comm.distributed()) {
+      std::vector<torch::Tensor> summed;
+      for (const auto& p : params) {
+        if (!p.grad().defined()) p.mutable_grad() = torch::zeros_like(p);
+        summed.push_back(p.grad());
+      }
+      for (const auto& t : shared_bn.sums()) summed.push_back(t);
+      summed.push_back(torch::tensor(float(l)));
+      comm.allreduce(summed, "the gradient all-reduce (epoch " + std::to_string(epoch0 + 1) + ")");
+      shared_bn.end_step(micro_batches);
+      l = double(summed.back().item<float>());
     }
     optimizer.step();
     loss_sum += l * double(refs.size());
@@ -645,18 +757,25 @@ void record_epoch(Run& run, PressureTransferNet& net, torch::optim::Adam& optimi
     s.best_val = val_loss;
     s.best_epoch = epoch0 + 1;
     s.bad_epochs = 0;
-    save_weights(net, run.best_path);
-    record_digest(run.md, "model.pt", weights_digest(*net));
-    run.write_config();
+    if (run.writes()) {
+      save_weights(net, run.best_path);
+      record_digest(run.md, "model.pt", weights_digest(*net));
+      run.write_config();
+    } else {
+      run.best_snapshot.clear();
+      for (const auto& t : weight_tensors(net)) run.best_snapshot.push_back(t.detach().clone());
+    }
   } else {
     ++s.bad_epochs;
   }
   s.history += std::to_string(epoch0 + 1) + "," + fmt("%.6g", train_loss) + "," + fmt("%.6g", val_loss) + "," +
                fmt("%.6g", lr) + "," + fmt("%.3f", secs) + "\n";
-  save_checkpoint(run.ckpt_path, net, optimizer, s);
-  record_digest(run.md, "checkpoint.pt", weights_digest(*net), s.epoch);
-  run.write_config();
-  write_text_file((run.dir / "history.csv").string(), s.history, /*force=*/true);
+  if (run.writes()) {
+    save_checkpoint(run.ckpt_path, net, optimizer, s);
+    record_digest(run.md, "checkpoint.pt", weights_digest(*net), s.epoch);
+    run.write_config();
+    write_text_file((run.dir / "history.csv").string(), s.history, /*force=*/true);
+  }
   char line[160];
   std::snprintf(line, sizeof line, "[epoch %d/%d] train %.6f val %.6f lr %.1e %.1f s", epoch0 + 1, run.o.epochs,
                 train_loss, val_loss, lr, secs);
@@ -673,7 +792,7 @@ void run_epochs(Run& run, PressureTransferNet& net, torch::optim::Adam& optimize
     const double lr = lr_at(o, e);
     for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
     const double train_loss = train_epoch(run, net, optimizer, batcher, index, e, s);
-    const ValResult v = validate_model(net, batcher, index, o, run.md.norm.pressure_scale_kpa, false);
+    const ValResult v = validate_model(net, batcher, index, o, run.md.norm.pressure_scale_kpa, false, run.comm);
     if (!std::isfinite(v.mse))
       throw Error("training diverged: validation loss is not finite at epoch " + std::to_string(e + 1) +
                   "; the last good checkpoint (epoch " + std::to_string(s.epoch) + ") is kept in " + run.ckpt_path);
@@ -688,10 +807,16 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
                           const State& s, std::chrono::steady_clock::time_point t_start) {
   const TrainOptions& o = run.o;
   ModelDir& md = run.md;
-  load_weights(net, run.best_path);
-  check_weights_digest(*net, recorded_digest(md, "model.pt"), run.best_path, run.config_path);
-  net->to(run.device);
-  const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true);
+  if (!run.best_snapshot.empty()) {  // a rank that does not write: its copy of the best weights
+    torch::NoGradGuard no_grad;
+    const auto tensors = weight_tensors(net);
+    for (std::size_t i = 0; i < tensors.size(); ++i) tensors[i].copy_(run.best_snapshot[i]);
+  } else {
+    load_weights(net, run.best_path);
+    check_weights_digest(*net, recorded_digest(md, "model.pt"), run.best_path, run.config_path);
+    net->to(run.device);
+  }
+  const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true, run.comm);
   // The output activation threshold that best matches the truth's contact
   // area on the validation windows (the first candidate, 0.5 kPa, is the
   // binarisation threshold itself: no change to the binary maps).
@@ -705,6 +830,10 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
   result.val_rmse_kpa = v.rmse_kpa;
   result.stopped_early = s.bad_epochs >= o.patience;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  const CommStats& cs = run.comm.stats();
+  result.allreduce_calls = cs.calls;
+  result.allreduce_bytes = cs.bytes;
+  result.allreduce_seconds = cs.seconds;
   const double binary_r2 = v.binary_r2[std::size_t(o.fit_contact_threshold ? best_c : 0)];
   md.metrics = json{{"epochs_run", s.epoch},
                     {"best_epoch", s.best_epoch},
@@ -730,23 +859,49 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
                 std::isfinite(v.zoom_rmse_kpa) ? fmt(", body scale %.3f", v.zoom_rmse_kpa).c_str() : "",
                 binary_r2, v.binary_r2.front(), v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
   run.log(line);
+  if (run.comm.distributed() && cs.calls > 0) {
+    std::snprintf(line, sizeof line, "train: %d ranks, %lld all-reduces, %.3f ms and %s each on average (rank %d)",
+                  run.comm.size(), (long long)cs.calls, 1e3 * cs.seconds / double(cs.calls),
+                  bytes_text(std::uint64_t(cs.bytes / cs.calls)).c_str(), run.comm.rank());
+    run.log(line);
+  }
   return result;
 }
 
 }  // namespace
 
+// Distributed: the ranks must agree on the data, the windows, the epoch and
+// the starting weights before the first step.
+void check_ranks_agree(const Run& run, const WindowIndex& index, const PressureTransferNet& net, const State& s) {
+  if (!run.comm.distributed()) return;
+  const auto halves = [](const std::string& text) {
+    const std::uint64_t h = std::hash<std::string>{}(text);
+    return std::array<double, 2>{double(h >> 32), double(h & 0xffffffffu)};
+  };
+  json options = options_json(run.o);
+  options.erase("threads");  // hosts may differ in cores
+  const auto data = halves(run.digest + options.dump()), weights = halves(weights_digest(*net));
+  run.comm.check_same({data[0], data[1], double(index.train_size()), double(index.val_size()), double(s.epoch),
+                       weights[0], weights[1]},
+                      "the data, the options, the resumed epoch or the starting weights");
+}
+
 TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& o) {
   check_options(o);
   const auto t_start = std::chrono::steady_clock::now();
-  Run run(source, out_dir, o);
+  // Joins the other ranks first: a bad rendezvous fails before any work.
+  const auto comm = Communicator::join({o.world_size, o.rank, o.rendezvous, o.dist_timeout_s});
+  Run run(source, out_dir, o, *comm);
   if (o.threads > 0) torch::set_num_threads(o.threads);
   plan_model(run);
   const WindowIndex index = index_windows(run);
-  prepare_out_dir(out_dir, o);
-  LeftoverGuard leftovers(out_dir, o.resume);  // a fresh run that fails while setting up leaves nothing behind
+  if (run.writes()) prepare_out_dir(out_dir, o);
+  // A fresh run that fails while setting up leaves nothing behind.
+  LeftoverGuard leftovers(out_dir, o.resume || !run.writes());
   PressureTransferNet net = build_network(run);
   torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(o.lr));
   State s = start_or_resume(run, net, optimizer);
+  check_ranks_agree(run, index, net, s);
   log_setup(run, index, net, s);
   Batcher batcher(source, index, run.md.norm, o.cache_mb, run.device, run.md.model.align);
   leftovers.done();  // from here a failure names what it keeps (the checkpoint)
