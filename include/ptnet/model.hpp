@@ -115,9 +115,15 @@ TORCH_MODULE(PressureTransferNet);
 //   net->eval();
 //   ptnet::InferenceNet fast(net);
 //   auto y = fast.forward(x, source, target);   // [N, T, H, W] >= 0, as net->forward
+// Memory layout of the activations: channels-last (NHWC) measured faster for
+// every architecture at batch 1 and 64, one thread (bench_model BM_InferenceLayout,
+// docs/model.md "Speed"); `automatic` picks the measured one.
+enum class MemoryLayout { automatic, contiguous, channels_last };
+
 class InferenceNet {
  public:
-  explicit InferenceNet(const PressureTransferNet& net);  // net in eval mode
+  explicit InferenceNet(const PressureTransferNet& net,  // net in eval mode
+                        MemoryLayout layout = MemoryLayout::automatic);
   // x [N, T, H, W], source, target [N, A] -> [N, T, H, W] normalised pressure >= 0.
   torch::Tensor forward(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target);
   const ModelConfig& config() const { return config_; }
@@ -130,6 +136,7 @@ class InferenceNet {
                                const torch::Tensor& target) const;
   torch::Tensor forward_frame(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target);
   ModelConfig config_;
+  at::MemoryFormat format_ = at::MemoryFormat::Contiguous;
   // window archs: conv1-3, deconv3, deconv2, deconv1, fc_features, fc_latent, fc_decode;
   // Arch::frame: conv0-5 (BN folded), lateral1, lateral0, head
   std::vector<Layer> layers_;

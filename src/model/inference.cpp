@@ -49,18 +49,20 @@ std::pair<torch::Tensor, torch::Tensor> norm_affine(const Named& n, const std::s
 
 }  // namespace
 
-InferenceNet::InferenceNet(const PressureTransferNet& net) : config_(net->config()) {
+InferenceNet::InferenceNet(const PressureTransferNet& net, MemoryLayout layout) : config_(net->config()) {
   TORCH_CHECK(!net->is_training(), "InferenceNet: the network must be in eval mode");
+  if (layout == MemoryLayout::automatic) layout = MemoryLayout::channels_last;  // measured: BM_InferenceLayout
+  format_ = layout == MemoryLayout::channels_last ? at::MemoryFormat::ChannelsLast : at::MemoryFormat::Contiguous;
   torch::NoGradGuard no_grad;
   const Named n(net);
   auto conv = [&](const std::string& c, const std::string& bn, bool transposed) {
     // Conv2d weight [out, in, 3, 3]; ConvTranspose2d weight [in, out, 3, 3].
     auto w = n(c + ".weight");
     auto b = n.has(c + ".bias") ? n(c + ".bias") : torch::zeros({w.size(transposed ? 1 : 0)});
-    if (bn.empty()) return Layer{w.contiguous(), b};
+    if (bn.empty()) return Layer{w.contiguous(format_), b};
     auto [scale, shift] = norm_affine(n, bn);
     auto ws = transposed ? w * scale.view({1, -1, 1, 1}) : w * scale.view({-1, 1, 1, 1});
-    return Layer{ws.contiguous(), b * scale + shift};
+    return Layer{ws.contiguous(format_), b * scale + shift};
   };
   if (config_.arch == Arch::frame) {
     for (int i = 0; i < 6; ++i) {
@@ -92,7 +94,7 @@ torch::Tensor InferenceNet::forward(const torch::Tensor& x, const torch::Tensor&
               "InferenceNet: expected attributes [N, 3]");
   torch::InferenceMode guard;
   if (c.arch == Arch::frame) return forward_frame(x, source, target);
-  return forward_window(x, source, target);
+  return forward_window(x.contiguous(format_), source, target).contiguous();
 }
 
 torch::Tensor InferenceNet::forward_window(const torch::Tensor& x, const torch::Tensor& source,
@@ -155,7 +157,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
         const auto width = layers_[std::size_t(i)].weight.size(0);
         auto g = 1 + f.narrow(0, offset, width);
         auto shift = f.narrow(0, offset + width, width);
-        folded_.push_back({(layers_[std::size_t(i)].weight * g.view({-1, 1, 1, 1})).contiguous(),
+        folded_.push_back({(layers_[std::size_t(i)].weight * g.view({-1, 1, 1, 1})).contiguous(format_),
                            layers_[std::size_t(i)].bias * g + shift});
         offset += int(2 * width);
       }
@@ -194,6 +196,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
                               x.narrow(1, t - 1, 1).expand({n, c.context, h, w})}, 1);
     frames = padded.unfold(1, 2 * c.context + 1, 1).permute({0, 1, 4, 2, 3}).reshape({n * t, 2 * c.context + 1, h, w});
   }
+  frames = frames.contiguous(format_);
   auto e0 = block(0, frames);                                                          // [M,C1,H,W]
   auto e1 = block(1, pool(e0));                                                        // [M,C2,H1,W1]
   auto e2 = block(2, pool(e1));                                                        // [M,C3,H2,W2]
