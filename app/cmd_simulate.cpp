@@ -38,6 +38,7 @@ struct SimulateCli {
   double crosstalk = -1, saturation_kpa = -1, noise_kpa = -1, threshold_kpa = -1, quantum_kpa = -1;
   bool ideal = false;
   bool no_floor = false;
+  int compression = kDefaultCompression;
   bool force = false;
 };
 
@@ -54,6 +55,7 @@ void run(const SimulateCli& c) {
   o.threads = c.threads;
   o.force = c.force;
   o.noise_floor = !c.no_floor;
+  o.compression = c.compression;
   o.generator = std::string("ptnet ") + PTNET_VERSION + " simulate";
   SimOptions& s = o.sim;
   s.mat = MatSpec{c.rows, c.cols, c.pitch_m};
@@ -138,6 +140,10 @@ void setup(CLI::App& app) {
   cmd->add_option("--quantum-kpa", c->quantum_kpa, "ADC step, 0: off (default 0.1)")->check(in_range(0, 1e6));
   cmd->add_flag("--no-floor", c->no_floor,
                 "Skip the second-seed copies of original-body sequences (/floor: the noise floor of evaluate)");
+  cmd->add_option("--compression", c->compression,
+                  "zlib level of the sequences, 0 (none, fastest, largest) - 9; 4 keeps ~all of 9's ratio")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 9));
   cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");
   cmd->callback([c] { run(*c); });
 }

@@ -99,3 +99,17 @@ TEST(ModelInference, NeedsEvalModeAndRightShapes) {
   InferenceNet fast(net);
   EXPECT_THROW(fast.forward(torch::rand({2, 30, 64, 28}), torch::zeros({2, 3}), torch::zeros({2, 3})), c10::Error);
 }
+
+TEST(ModelInference, LargeBatchesRunInChunksWithTheSameResult) {
+  for (Arch arch : {Arch::skip, Arch::frame}) {
+    const ModelConfig c = small(arch);
+    PressureTransferNet net = random_net(c);
+    InferenceNet fast(net);
+    auto x = torch::rand({19, c.window, c.rows, c.cols});  // 8 + 8 + 3 windows
+    auto a = torch::randn({1, 3}).expand({19, 3});
+    auto mixed = torch::randn({19, 3});
+    torch::NoGradGuard no_grad;
+    expect_close(net->forward(x, a, mixed), fast.forward(x, a, mixed), std::string(arch_name(arch)) + " batch 19");
+    expect_close(net->forward(x, a, a), fast.forward(x, a, a), std::string(arch_name(arch)) + " batch 19, one pair");
+  }
+}
