@@ -99,6 +99,7 @@ void BM_TrainStep(benchmark::State& state) {
 BENCHMARK(BM_TrainStep)->ArgsProduct({{1, 2}, {0, 1}, {32}})->Unit(benchmark::kMillisecond)->UseRealTime();
 // The micro-batch (TrainOptions::micro_batch) by measurement: one thread, batches 8-64.
 BENCHMARK(BM_TrainStep)->ArgsProduct({{1}, {0, 1, 2}, {8, 16, 64}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TrainStep)->Args({1, 2, 32})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Inference on batches of 64 windows (eval mode, no grad).
 void BM_Inference(benchmark::State& state) {

@@ -98,9 +98,10 @@ struct TrainOptions {
   ModelConfig model;                // window, rows and cols are taken from the data
   int epochs = 500;                 // maximum epochs
   int batch = 1028;                 // windows per optimiser step
-  int micro_batch = 64;             // windows per forward/backward pass; gradients of a batch's
+  int micro_batch = 16;             // windows per forward/backward pass; gradients of a batch's
                                     // micro-batches are accumulated (bounds memory; BatchNorm
-                                    // statistics are per micro-batch)
+                                    // statistics are per micro-batch). 16 measured fastest per
+                                    // window (bench_model BM_TrainStep, docs/model.md "Speed")
   double lr = 0.01;                 // Adam initial learning rate
   int lr_halve_every = 20;          // epochs between halvings of the learning rate
   int patience = 50;                // early stop after this many epochs without val improvement
