@@ -127,28 +127,28 @@ torch::Tensor InferenceNet::forward_window(const torch::Tensor& x, const torch::
   auto deconv = [&](const torch::Tensor& t, const Layer& l) { return conv(t.contiguous(format_), l); };
   auto pool = [](const torch::Tensor& t) { return torch::max_pool2d_with_indices(t, 2, 2, 0, 1, true); };
   // Encoder: [N,T,H,W] -> [N,C1,H1,W1] -> [N,C2,H2,W2] -> [N,C3,H3,W3]
-  auto e1 = (conv(x, L[0])).relu_();
+  auto e1 = conv(x, L[0]).relu_();
   auto [p1, i1] = pool(e1);
-  auto e2 = (conv(p1, L[1])).relu_();
+  auto e2 = conv(p1, L[1]).relu_();
   auto [p2, i2] = pool(e2);
-  auto e3 = (conv(p2, L[2])).relu_();
+  auto e3 = conv(p2, L[2]).relu_();
   auto [p3, i3] = pool(e3);
-  auto h = (torch::linear(p3.flatten(1), L[6].weight, L[6].bias)).relu_();       // [N, hidden]
+  auto h = torch::linear(p3.flatten(1), L[6].weight, L[6].bias).relu_();       // [N, hidden]
   auto z = torch::linear(torch::cat({h, source}, 1), L[7].weight, L[7].bias);        // [N, latent]
   // Decoder
-  auto d = (torch::linear(torch::cat({z, target}, 1), L[8].weight, L[8].bias)).relu_();
+  auto d = torch::linear(torch::cat({z, target}, 1), L[8].weight, L[8].bias).relu_();
   d = d.view({x.size(0), c.channels[2], s3[0], s3[1]});
   d = torch::max_unpool2d(d, i3, {s2[0], s2[1]});                                     // [N,C3,H2,W2]
   if (skips) d = torch::cat({d, e3}, 1);
-  d = (deconv(d, L[3])).relu_();                                                  // [N,C2,H2,W2]
+  d = deconv(d, L[3]).relu_();                                                  // [N,C2,H2,W2]
   d = torch::max_unpool2d(d, i2, {s1[0], s1[1]});
   if (skips) d = torch::cat({d, e2}, 1);
-  d = (deconv(d, L[4])).relu_();                                                  // [N,C1,H1,W1]
+  d = deconv(d, L[4]).relu_();                                                  // [N,C1,H1,W1]
   d = torch::max_unpool2d(d, i1, {s0[0], s0[1]});
   if (skips) d = torch::cat({d, e1}, 1);
   auto out = deconv(d, L[5]);                                                         // [N,T,H,W]
   if (is_residual(c.arch)) out = out + x;
-  return (out).relu_();
+  return out.relu_();
 }
 
 // One body pair for every frame: FiLM folded into the BN-folded weights
@@ -167,7 +167,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
     one_pair = std::equal(sp, sp + kAttributes, sp + i * kAttributes) &&
                std::equal(dp, dp + kAttributes, dp + i * kAttributes);
   auto film_of = [&](const torch::Tensor& cond) {                                      // [*, 2A] -> [*, F]
-    auto hdn = (torch::linear(cond, film1_.weight, film1_.bias)).relu_();
+    auto hdn = torch::linear(cond, film1_.weight, film1_.bias).relu_();
     return torch::linear(hdn, film2_.weight, film2_.bias);
   };
   torch::Tensor film;  // [M, F], only for mixed pairs
@@ -198,7 +198,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
   auto block = [&](int i, const torch::Tensor& in) {
     if (one_pair) {
       const Layer& l = folded_[std::size_t(i)];
-      return (torch::conv2d(in, l.weight, l.bias, 1, 1)).relu_();
+      return torch::conv2d(in, l.weight, l.bias, 1, 1).relu_();
     }
     const Layer& l = layers_[std::size_t(i)];
     const auto width = l.weight.size(0);
