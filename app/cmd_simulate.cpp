@@ -39,6 +39,7 @@ struct SimulateCli {
   double crosstalk = -1, saturation_kpa = -1, noise_kpa = -1, threshold_kpa = -1, quantum_kpa = -1;
   bool ideal = false;
   bool no_floor = false;
+  int compression = kDefaultCompression;
   bool force = false;
   std::string shard;  // "K/N"
 };
@@ -65,6 +66,7 @@ void run(const SimulateCli& c) {
   o.threads = c.threads;
   o.force = c.force;
   o.noise_floor = !c.no_floor;
+  o.compression = c.compression;
   o.generator = std::string("ptnet ") + PTNET_VERSION + " simulate";
   if (!c.shard.empty()) std::tie(o.shard_index, o.shard_count) = parse_shard(c.shard);
   SimOptions& s = o.sim;
@@ -154,6 +156,10 @@ void setup(CLI::App& app) {
   cmd->add_option("--shard", c->shard,
                   "K/N: only the K-th (0-based) of N contiguous blocks of the clip x body list; "
                   "ptnet merge joins the N files (docs/distributed.md)");
+  cmd->add_option("--compression", c->compression,
+                  "zlib level of the sequences, 0 (none, fastest, largest) - 9; 4 keeps ~all of 9's ratio")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 9));
   cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");
   cmd->callback([c] { run(*c); });
 }

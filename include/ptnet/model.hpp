@@ -104,6 +104,48 @@ class PressureTransferNetImpl : public torch::nn::Module {
 };
 TORCH_MODULE(PressureTransferNet);
 
+// A trained network for inference only (src/model/inference.cpp): a copy of
+// the weights with every eval-mode BatchNorm folded into its convolution and,
+// for Arch::frame with one (source, target) pair per call, the FiLM
+// modulation folded too (cached per pair), run under torch::InferenceMode.
+// forward() equals net->forward() of the eval-mode module within float
+// rounding (tested: model_inference_test); the module stays the reference
+// and the only path for training.
+//
+//   net->eval();
+//   ptnet::InferenceNet fast(net);
+//   auto y = fast.forward(x, source, target);   // [N, T, H, W] >= 0, as net->forward
+// Memory layout of the activations: channels-last (NHWC) measured faster for
+// every architecture at batch 1 and 64, one thread (bench_model BM_InferenceLayout,
+// docs/model.md "Speed"); `automatic` picks the measured one.
+enum class MemoryLayout { automatic, contiguous, channels_last };
+
+class InferenceNet {
+ public:
+  explicit InferenceNet(const PressureTransferNet& net,  // net in eval mode
+                        MemoryLayout layout = MemoryLayout::automatic);
+  // x [N, T, H, W], source, target [N, A] -> [N, T, H, W] normalised pressure >= 0.
+  torch::Tensor forward(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target);
+  const ModelConfig& config() const { return config_; }
+
+ private:
+  struct Layer {
+    torch::Tensor weight, bias;
+  };
+  torch::Tensor forward_window(const torch::Tensor& x, const torch::Tensor& source,
+                               const torch::Tensor& target) const;
+  torch::Tensor forward_frame(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target);
+  ModelConfig config_;
+  at::MemoryFormat format_ = at::MemoryFormat::Contiguous;
+  // window archs: conv1-3, deconv3, deconv2, deconv1, fc_features, fc_latent, fc_decode;
+  // Arch::frame: conv0-5 (BN folded), lateral1, lateral0, head
+  std::vector<Layer> layers_;
+  Layer film1_, film2_;
+  torch::Tensor contact_floor_;
+  std::vector<float> pair_key_;   // the (source, target) attributes folded_ is for
+  std::vector<Layer> folded_;     // conv0-5 with BN and FiLM folded
+};
+
 // Trainable parameters of a module.
 std::int64_t parameter_count(const torch::nn::Module& module);
 

@@ -30,6 +30,17 @@ struct NpyArray {
 NpyArray read_npy(const std::string& path);
 // The same on the bytes of a file (`name` names it in messages).
 NpyArray parse_npy(const std::string& bytes, const std::string& name);
+// The header of a .npy file or stream: its shape and where the data start.
+// `bytes` holds at least the header (the data need not follow: a stream's
+// shape may promise more frames than will come). Throws Error as parse_npy.
+struct NpyHeader {
+  std::vector<std::int64_t> shape;
+  std::size_t data_offset = 0;  // header bytes, magic included
+};
+NpyHeader parse_npy_header(const std::string& bytes, const std::string& name);
+// The header's size in bytes from the file's first 12 bytes (10 suffice for
+// version 1). Throws Error for a missing magic or an unknown version.
+std::size_t npy_header_size(const std::string& first_bytes, const std::string& name);
 // Atomic write; refuses to overwrite unless force.
 void write_npy(const std::string& path, const NpyArray& array, bool force);
 

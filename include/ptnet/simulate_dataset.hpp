@@ -13,8 +13,9 @@
 // is simulated, so a missing or malformed file fails the run at once and no
 // output is left. Jobs (clip x body, clip-major) are then retargeted onto the
 // body's height, simulated on `threads` threads and written in chunks of
-// `chunk_jobs`, so memory holds the source clips plus one chunk of retargeted
-// motions and pressure sequences, whatever the size of the run. Sequence i is
+// `chunk_jobs` (chunk i is written, compressed, on its own thread while
+// chunk i + 1 is simulated), so memory holds the source clips plus two chunks
+// of pressure sequences, whatever the size of the run. Sequence i is
 // named "<motion_id>__<body_id>" and seeded with sequence_seed(seed, name):
 // the file is byte-identical for any thread count or chunk size.
 // Each clip is placed on the mat once, from the source motion (place_motion),
@@ -105,6 +106,7 @@ struct SimulateDatasetOptions {
   int chunk_jobs = 0;             // jobs per chunk; 0: 8 x threads (at least 16)
   bool force = false;             // overwrite an existing output
   bool noise_floor = true;        // /floor/<name> for sequences on original bodies
+  int compression = kDefaultCompression;  // zlib level 0-9 of the sequences (DatasetInfo::compression)
   std::string generator = "ptnet simulate";
   std::string config_json;        // "" : built from the options
   // Shard `shard_index` of `shard_count` (ptnet simulate --shard K/N): the

@@ -40,25 +40,25 @@ NpyArray read_npy(const std::string& path) {
   return parse_npy(read_text_file(path, kMaxNpyBytes), path);
 }
 
-NpyArray parse_npy(const std::string& bytes, const std::string& path) {
+std::size_t npy_header_size(const std::string& bytes, const std::string& path) {
   if (bytes.size() < 10 || std::memcmp(bytes.data(), "\x93NUMPY", 6) != 0)
     throw Error::in(path, "not a .npy file (expected the \\x93NUMPY magic)");
   const int major = static_cast<unsigned char>(bytes[6]);
-  std::size_t header_len, offset;
-  if (major == 1) {
-    header_len = std::size_t(static_cast<unsigned char>(bytes[8])) |
-                 std::size_t(static_cast<unsigned char>(bytes[9])) << 8;
-    offset = 10;
-  } else if (major == 2 || major == 3) {
-    if (bytes.size() < 12) throw Error::in(path, "npy header truncated");
-    header_len = 0;
-    for (int i = 0; i < 4; ++i) header_len |= std::size_t(static_cast<unsigned char>(bytes[8 + i])) << (8 * i);
-    offset = 12;
-  } else {
-    throw Error::in(path, "unsupported npy version " + std::to_string(major));
-  }
-  if (bytes.size() < offset + header_len) throw Error::in(path, "npy header truncated");
-  const std::string header = bytes.substr(offset, header_len);
+  if (major == 1)
+    return 10 + (std::size_t(static_cast<unsigned char>(bytes[8])) |
+                 std::size_t(static_cast<unsigned char>(bytes[9])) << 8);
+  if (major != 2 && major != 3) throw Error::in(path, "unsupported npy version " + std::to_string(major));
+  if (bytes.size() < 12) throw Error::in(path, "npy header truncated");
+  std::size_t header_len = 0;
+  for (int i = 0; i < 4; ++i) header_len |= std::size_t(static_cast<unsigned char>(bytes[8 + i])) << (8 * i);
+  return 12 + header_len;
+}
+
+NpyHeader parse_npy_header(const std::string& bytes, const std::string& path) {
+  const std::size_t end = npy_header_size(bytes, path);
+  const std::size_t offset = static_cast<unsigned char>(bytes[6]) == 1 ? 10 : 12;
+  if (bytes.size() < end) throw Error::in(path, "npy header truncated");
+  const std::string header = bytes.substr(offset, end - offset);
   const std::string descr = dict_value(header, "descr", path);
   if (descr != "'<f4'" && descr != "'|f4'")
     throw Error::in(path, "expected dtype float32 ('<f4'), found " + escaped(descr, 40, false));
@@ -67,28 +67,35 @@ NpyArray parse_npy(const std::string& bytes, const std::string& path) {
   std::string shape = dict_value(header, "shape", path);
   if (shape.size() < 2 || shape.front() != '(' || shape.back() != ')')
     throw Error::in(path, "npy header: bad shape " + escaped(shape));
-  NpyArray a;
-  std::uint64_t count = 1;
-  {
-    std::string inner = shape.substr(1, shape.size() - 2);
-    std::stringstream ss(inner);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-      auto b = item.find_first_not_of(' ');
-      if (b == std::string::npos) continue;
-      std::int64_t v;
-      try {
-        std::size_t used;
-        v = std::stoll(item.substr(b), &used);
-      } catch (const std::exception&) {
-        throw Error::in(path, "npy header: bad shape " + escaped(shape));
-      }
-      if (v < 0) throw Error::in(path, "npy header: bad shape " + escaped(shape));
-      a.shape.push_back(v);
-      count = checked_mul(count, std::uint64_t(v), path, "npy header: the shape's element count");
+  NpyHeader h;
+  h.data_offset = end;
+  std::string inner = shape.substr(1, shape.size() - 2);
+  std::stringstream ss(inner);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    auto b = item.find_first_not_of(' ');
+    if (b == std::string::npos) continue;
+    std::int64_t v;
+    try {
+      std::size_t used;
+      v = std::stoll(item.substr(b), &used);
+    } catch (const std::exception&) {
+      throw Error::in(path, "npy header: bad shape " + escaped(shape));
     }
+    if (v < 0) throw Error::in(path, "npy header: bad shape " + escaped(shape));
+    h.shape.push_back(v);
   }
-  const std::size_t data_at = offset + header_len;
+  return h;
+}
+
+NpyArray parse_npy(const std::string& bytes, const std::string& path) {
+  NpyHeader h = parse_npy_header(bytes, path);
+  NpyArray a;
+  a.shape = std::move(h.shape);
+  std::uint64_t count = 1;
+  for (std::int64_t v : a.shape)
+    count = checked_mul(count, std::uint64_t(v), path, "npy header: the shape's element count");
+  const std::size_t data_at = h.data_offset;
   const std::uint64_t need = checked_mul(count, sizeof(float), path, "npy header: the shape's byte count");
   if (std::uint64_t(bytes.size() - data_at) != need)
     throw Error::in(path, "expected " + std::to_string(need) + " data bytes for shape " +

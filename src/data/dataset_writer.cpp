@@ -16,7 +16,6 @@ namespace ptnet {
 
 namespace {
 constexpr int kChunkFrames = 32;    // frames per chunk: a 30-frame window touches <= 2 chunks
-constexpr int kDeflateLevel = 4;    // zlib level: ~all of level 9's ratio at a third of the time
 
 void check_body(const std::string& file, const BodySpec& b) {
   auto where = "body '" + b.id + "'";
@@ -87,8 +86,9 @@ void check_frames(const std::string& path, const std::string& where, const Datas
   }
 }
 
-// float32 [T, rows, cols] in chunks of kChunkFrames frames, shuffle + deflate.
-H5::DataSet write_frames(H5::Group& group, const std::string& name, const PressureSequence& seq) {
+// float32 [T, rows, cols] in chunks of kChunkFrames frames, shuffle + deflate
+// at `level` (0: neither filter).
+H5::DataSet write_frames(H5::Group& group, const std::string& name, const PressureSequence& seq, int level) {
   const int frames = seq.frames();
   hsize_t dims[3] = {hsize_t(frames), hsize_t(seq.mat.rows), hsize_t(seq.mat.cols)};
   hsize_t chunk[3] = {hsize_t(std::min(frames, kChunkFrames)), dims[1], dims[2]};
@@ -96,8 +96,10 @@ H5::DataSet write_frames(H5::Group& group, const std::string& name, const Pressu
   H5::DSetCreatPropList plist;
   H5Pset_obj_track_times(plist.getId(), false);
   plist.setChunk(3, chunk);
-  plist.setShuffle();
-  plist.setDeflate(kDeflateLevel);
+  if (level > 0) {
+    plist.setShuffle();
+    plist.setDeflate(unsigned(level));
+  }
   H5::DataSet ds = group.createDataSet(name, H5::PredType::IEEE_F32LE, space, plist);
   ds.write(seq.kpa.data(), H5::PredType::NATIVE_FLOAT);
   return ds;
@@ -126,6 +128,8 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetInfo& info,
   if (info.mat.rows <= 0 || info.mat.cols <= 0 || !(info.mat.pitch_m > 0))
     throw Error::in(path, "mat must have positive rows, cols and pitch");
   if (!(info.fps > 0)) throw Error::in(path, "fps must be positive");
+  if (info.compression < 0 || info.compression > 9)
+    throw Error::in(path, "compression must be a zlib level 0-9, found " + std::to_string(info.compression));
   for (const auto& b : bodies) {
     check_body(path, b);
     if (!impl->body_ids.insert(b.id).second)
@@ -173,7 +177,7 @@ void DatasetWriter::add(const SequenceMeta& meta, const PressureSequence& seq) {
     throw Error::in(path, where + ": body_id '" + meta.body_id + "' not in the bodies table");
   check_frames(path, where, impl_->info, seq);
   try {
-    H5::DataSet ds = write_frames(impl_->sequences, meta.name, seq);
+    H5::DataSet ds = write_frames(impl_->sequences, meta.name, seq, impl_->info.compression);
     h5::write_attr(ds, "body_id", meta.body_id);
     h5::write_attr(ds, "motion_id", meta.motion_id);
     h5::write_attr(ds, "performer", meta.performer);
@@ -199,7 +203,7 @@ void DatasetWriter::add_floor(const std::string& name, const PressureSequence& s
                               std::to_string(it->second));
   try {
     if (impl_->floors.empty()) impl_->floor = h5::create_group(impl_->file, "floor");
-    write_frames(impl_->floor, name, seq);
+    write_frames(impl_->floor, name, seq, impl_->info.compression);
   } catch (const H5::Exception&) {
     throw Error::in(path, where + ": cannot write: " + h5::error_stack_text());
   }

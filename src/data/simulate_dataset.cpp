@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <nlohmann/json.hpp>
@@ -77,7 +79,8 @@ void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptio
 }
 
 // Sizes before allocating: sequence count, then the memory of the metadata
-// and of one chunk of simulated sequences (plus one per thread at work).
+// and of two chunks of simulated sequences (one written while the next is
+// simulated), plus one per thread at work.
 void check_sizes(const std::vector<Motion>& motions, std::size_t bodies, const std::string& out_path,
                  const SimulateDatasetOptions& options, int threads) {
   const int nc = int(motions.size());
@@ -94,7 +97,7 @@ void check_sizes(const std::vector<Motion>& motions, std::size_t bodies, const s
       longest, checked_mul(std::uint64_t(options.sim.mat.rows) * std::uint64_t(options.sim.mat.cols), sizeof(float),
                            out_path, "mat cells"),
       out_path, "a sequence");
-  check_memory(checked_mul(sequence_bytes, chunk_jobs + std::uint64_t(threads), out_path, "simulation") +
+  check_memory(checked_mul(sequence_bytes, 2 * chunk_jobs + std::uint64_t(threads), out_path, "simulation") +
                    checked_mul(jobs, 512, out_path, "sequence list"),
                out_path, "simulating " + std::to_string(jobs) + " sequences of up to " + std::to_string(longest) +
                              " frames on a " + std::to_string(options.sim.mat.rows) + " x " +
@@ -120,7 +123,8 @@ std::vector<SequenceMeta> sequence_metas(const std::vector<ClipSource>& clips, c
   return metas;
 }
 
-// 2. Chunks of jobs: retarget, simulate, write. Sequences on original
+// 2. Chunks of jobs: retarget, simulate, write (chunk i is written while
+//    chunk i + 1 is simulated). Sequences on original
 //    bodies are simulated a second time with another sensor seed (the
 //    noise floor, /floor/<name>); progress counts only the sequences.
 void simulate_chunks(const std::vector<Motion>& motions, const std::vector<MotionPlacement>& places,
@@ -131,6 +135,14 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
   const int chunk = options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads);
   const auto with_floor = [&](int j) { return options.noise_floor && bodies[std::size_t(j % nb)].role == "original"; };
   int done = 0;
+  std::future<void> writing;  // the previous chunk's writes
+  // On an error the chunk being written finishes first (it references this frame).
+  struct Wait {
+    std::future<void>& f;
+    ~Wait() {
+      if (f.valid()) f.wait();
+    }
+  } wait_writer{writing};
   for (int j0 = begin; j0 < end; j0 += chunk) {
     const int j1 = std::min(end, j0 + chunk);
     std::vector<Motion> retargeted(std::size_t(j1 - j0));
@@ -154,19 +166,27 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
         f.seed = floor_seed(options.seed, metas[std::size_t(j)].name);
         jobs.push_back(f);
       }
-    const std::vector<PressureSequence> seqs = simulate_many(jobs, options.sim, threads, [&](const Progress& p) {
-      if (options.progress)
-        options.progress(progress_count("simulate", done + int(p.done) * (j1 - j0) / int(p.total), total, "sequences"));
+    auto seqs = std::make_shared<std::vector<PressureSequence>>(
+        simulate_many(jobs, options.sim, threads, [&](const Progress& p) {
+          if (options.progress)
+            options.progress(
+                progress_count("simulate", done + int(p.done) * (j1 - j0) / int(p.total), total, "sequences"));
+        }));
+    if (writing.valid()) writing.get();  // the previous chunk is written (or its error thrown)
+    // Written (compressed) on one thread while the next chunk is simulated, in
+    // the same order as before: the file's bytes do not change.
+    writing = std::async(std::launch::async, [&, seqs, floor_job = std::move(floor_job), j0, j1] {
+      for (int j = j0; j < j1; ++j) {
+        const PressureSequence& s = (*seqs)[std::size_t(j - j0)];
+        writer.add(metas[std::size_t(j)], s);
+        if (floor_job[std::size_t(j - j0)] >= 0)
+          writer.add_floor(metas[std::size_t(j)].name, (*seqs)[std::size_t(floor_job[std::size_t(j - j0)])]);
+        summary.frames += s.frames();
+      }
     });
-    for (int j = j0; j < j1; ++j) {
-      const PressureSequence& s = seqs[std::size_t(j - j0)];
-      writer.add(metas[std::size_t(j)], s);
-      if (floor_job[std::size_t(j - j0)] >= 0)
-        writer.add_floor(metas[std::size_t(j)].name, seqs[std::size_t(floor_job[std::size_t(j - j0)])]);
-      summary.frames += s.frames();
-    }
     done = j1 - begin;
   }
+  if (writing.valid()) writing.get();
 }
 
 // --shard K/N: the jobs [J K / N, J (K + 1) / N) of J, and "shard": "K/N"
@@ -205,6 +225,7 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
   info.mat = options.sim.mat;
   info.fps = options.fps;
   info.generator = options.generator;
+  info.compression = options.compression;
   info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
   const auto [begin, end] = shard_jobs(int(metas.size()), options, out_path, info.config_json);
   DatasetWriter writer(out_path, info, bodies, options.force);

@@ -9,51 +9,66 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/model.hpp"
+#include "model/loaded_model.hpp"
 
 namespace ptnet {
 
+std::unique_ptr<LoadedModel> load_model(const std::string& model_dir, const std::string& device, int threads,
+                                        int batch) {
+  if (threads < 0 || threads > max_threads())
+    throw Error("transfer: threads must be in 0-" + std::to_string(max_threads()) + ", found " +
+                std::to_string(threads));
+  namespace fs = std::filesystem;
+  const std::string config_path = (fs::path(model_dir) / "config.json").string();
+  const std::string weights_path = (fs::path(model_dir) / "model.pt").string();
+  note_input(config_path);  // no output of this run may replace the model
+  note_input(weights_path);
+  auto m = std::make_unique<LoadedModel>();
+  m->dir = read_model_dir(model_dir);
+  m->device = parse_device(device);
+  if (threads > 0) torch::set_num_threads(threads);
+  check_memory(model_memory_bytes(m->dir.model, batch, /*training=*/false), config_path,
+               "the model (" + std::to_string(parameter_count(m->dir.model)) + " parameters)");
+  m->net = PressureTransferNet(m->dir.model);
+  load_weights(m->net, weights_path);
+  check_weights_digest(*m->net, recorded_digest(m->dir, "model.pt"), weights_path, config_path);
+  m->net->eval();
+  if (m->device.is_cpu()) m->fast = std::make_unique<InferenceNet>(m->net);
+  m->net->to(m->device);
+  return m;
+}
+
+torch::Tensor LoadedModel::forward(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target) {
+  if (fast) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return fast->forward(x, source, target);
+  }
+  torch::NoGradGuard no_grad;
+  return net->forward(x.to(device), source.to(device), target.to(device)).cpu();
+}
+
 struct Transfer::Impl {
-  ModelDir dir;
   TransferOptions options;
-  torch::Device device = torch::kCPU;
-  PressureTransferNet net{nullptr};
+  std::unique_ptr<LoadedModel> model;
 };
 
 Transfer::Transfer(const std::string& model_dir, const TransferOptions& options)
     : impl_(std::make_unique<Impl>()) {
   if (options.stride < 1) throw Error("transfer: stride must be >= 1, found " + std::to_string(options.stride));
   if (options.batch < 1) throw Error("transfer: batch must be >= 1, found " + std::to_string(options.batch));
-  if (options.threads < 0 || options.threads > max_threads())
-    throw Error("transfer: threads must be in 0-" + std::to_string(max_threads()) + ", found " +
-                std::to_string(options.threads));
   impl_->options = options;
-  namespace fs = std::filesystem;
-  const std::string config_path = (fs::path(model_dir) / "config.json").string();
-  const std::string weights_path = (fs::path(model_dir) / "model.pt").string();
-  note_input(config_path);  // no output of this run may replace the model
-  note_input(weights_path);
-  impl_->dir = read_model_dir(model_dir);
-  impl_->device = parse_device(options.device);
-  if (options.threads > 0) torch::set_num_threads(options.threads);
-  check_memory(model_memory_bytes(impl_->dir.model, options.batch, /*training=*/false), config_path,
-               "the model (" + std::to_string(parameter_count(impl_->dir.model)) + " parameters)");
-  impl_->net = PressureTransferNet(impl_->dir.model);
-  load_weights(impl_->net, weights_path);
-  check_weights_digest(*impl_->net, recorded_digest(impl_->dir, "model.pt"), weights_path, config_path);
-  impl_->net->to(impl_->device);
-  impl_->net->eval();
+  impl_->model = load_model(model_dir, options.device, options.threads, options.batch);
 }
 
 Transfer::~Transfer() = default;
 Transfer::Transfer(Transfer&&) noexcept = default;
 Transfer& Transfer::operator=(Transfer&&) noexcept = default;
 
-const ModelDir& Transfer::model() const { return impl_->dir; }
+const ModelDir& Transfer::model() const { return impl_->model->dir; }
 
 PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& source,
                                const BodySpec& target) const {
-  const ModelDir& d = impl_->dir;
+  const ModelDir& d = impl_->model->dir;
   const int k = d.model.window, h = d.model.rows, w = d.model.cols;
   if (src.mat.rows != h || src.mat.cols != w)
     throw Error::in(d.path, "model is built for a " + std::to_string(h) + " x " + std::to_string(w) +
@@ -86,28 +101,34 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
                               body_gain(source.height_cm, source.weight_kg, target.height_cm, target.weight_kg))
           : PressureSequence{};
   const PressureSequence& in = d.model.align == Align::zoom ? aligned : src;
+  torch::InferenceMode inference;
   torch::Tensor input = torch::from_blob(const_cast<float*>(in.kpa.data()), {t, h, w}, torch::kFloat32)
                             .mul(inv_scale);                             // [T, H, W] normalised
-  torch::Tensor sum = torch::zeros({t, h, w}, torch::kFloat32);          // [T, H, W]
+  PressureSequence out(src.mat, t, src.fps);
+  torch::Tensor sum = torch::from_blob(out.kpa.data(), {t, h, w}, torch::kFloat32);  // [T, H, W], out's memory
+  sum.zero_();
   torch::Tensor cover = torch::zeros({t}, torch::kFloat32);              // windows per frame
-  torch::NoGradGuard no_grad;
   const int batch = impl_->options.batch;
+  const auto s_all = torch::tensor(std::vector<float>(sa.begin(), sa.end())).view({1, 3});
+  const auto t_all = torch::tensor(std::vector<float>(ta.begin(), ta.end())).view({1, 3});
   for (std::size_t b = 0; b < starts.size(); b += batch) {
     const int n = int(std::min<std::size_t>(batch, starts.size() - b));
-    std::vector<torch::Tensor> windows;
-    for (int i = 0; i < n; ++i) windows.push_back(input.narrow(0, starts[b + i], k));
-    auto x = torch::stack(windows).to(impl_->device);                    // [n, K, H, W]
-    auto s_attr = torch::tensor(std::vector<float>(sa.begin(), sa.end())).view({1, 3}).expand({n, 3});
-    auto t_attr = torch::tensor(std::vector<float>(ta.begin(), ta.end())).view({1, 3}).expand({n, 3});
-    auto y = impl_->net->forward(x, s_attr.to(impl_->device), t_attr.to(impl_->device)).cpu();
+    // Consecutive windows of one frame (the frame network) are a view, else a stack.
+    torch::Tensor x;
+    if (k == 1 && starts[b + n - 1] - starts[b] == n - 1) {
+      x = input.narrow(0, starts[b], n).unsqueeze(1);                    // [n, 1, H, W]
+    } else {
+      std::vector<torch::Tensor> windows;
+      for (int i = 0; i < n; ++i) windows.push_back(input.narrow(0, starts[b + i], k));
+      x = torch::stack(windows);                                          // [n, K, H, W]
+    }
+    auto y = impl_->model->forward(x, s_all.expand({n, 3}), t_all.expand({n, 3}));
     for (int i = 0; i < n; ++i) {
       sum.narrow(0, starts[b + i], k).add_(y[i]);
       cover.narrow(0, starts[b + i], k).add_(1.0f);
     }
   }
-  auto out_t = (sum / cover.view({t, 1, 1}) * float(d.norm.pressure_scale_kpa)).contiguous();
-  PressureSequence out(src.mat, t, src.fps);
-  std::copy(out_t.data_ptr<float>(), out_t.data_ptr<float>() + out.kpa.size(), out.kpa.begin());
+  sum.div_(cover.view({t, 1, 1})).mul_(float(d.norm.pressure_scale_kpa));
   if (!impl_->options.raw && d.norm.contact_threshold_kpa > 0) zero_below(out, d.norm.contact_threshold_kpa);
   return out;
 }
