@@ -32,10 +32,10 @@ struct SimulateCli {
   int threads = 0;
   std::string placement = "fixed";
   std::string units = "auto", up = "y";
-  int rows = 80, cols = 28;
-  double pitch_m = 0.02;
+  int rows = SimOptions{}.mat.rows, cols = SimOptions{}.mat.cols;
+  double pitch_m = SimOptions{}.mat.pitch_m;
   double compliance_mm = SimOptions{}.compliance_m * 1000;
-  int subsamples = 3;
+  int subsamples = SimOptions{}.subsamples;
   double crosstalk = -1, saturation_kpa = -1, noise_kpa = -1, threshold_kpa = -1, quantum_kpa = -1;
   bool ideal = false;
   bool no_floor = false;

@@ -20,8 +20,8 @@ namespace ptnet::cli {
 namespace {
 
 struct TransferCli {
-  std::string model, in, sequence, source, target, out, device = "cpu";
-  int stride = 5, threads = 0;
+  std::string model, in, sequence, source, target, out, device = TransferOptions{}.device;
+  int stride = TransferOptions{}.stride, threads = TransferOptions{}.threads;
   bool force = false, raw = false;
 };
 

@@ -18,6 +18,7 @@
 #include <map>
 
 #include "ptnet/model.hpp"
+#include "ptnet/train.hpp"
 
 namespace {
 
@@ -26,13 +27,7 @@ using ptnet::ModelConfig;
 ModelConfig config_for(int widths) {
   if (widths == 0) return ModelConfig::paper();
   if (widths == 1) return ModelConfig::fast();
-  ModelConfig c = ModelConfig::fast();  // the fast preset (TrainOptions::from_preset("fast"))
-  c.arch = ptnet::Arch::frame;
-  c.window = 1;
-  c.channels = {16, 32, 48};
-  c.hidden = 64;
-  c.contact = true;
-  return c;
+  return ptnet::TrainOptions::from_preset("fast").model;  // the fast preset's frame network
 }
 
 // An eval-mode network whose BatchNorm statistics are not the identity.

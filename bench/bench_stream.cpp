@@ -23,22 +23,15 @@
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
 #include "ptnet/stream.hpp"
+#include "ptnet/train.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 ptnet::ModelConfig config_for(int widths) {
-  ptnet::ModelConfig c = widths == 0 ? ptnet::ModelConfig::paper() : ptnet::ModelConfig::fast();
-  if (widths == 2) {  // TrainOptions::from_preset("fast")
-    c.arch = ptnet::Arch::frame;
-    c.align = ptnet::Align::zoom;
-    c.window = 1;
-    c.channels = {16, 32, 48};
-    c.hidden = 64;
-    c.contact = true;
-  }
-  return c;
+  if (widths == 2) return ptnet::TrainOptions::from_preset("fast").model;  // the fast preset's frame network
+  return widths == 0 ? ptnet::ModelConfig::paper() : ptnet::ModelConfig::fast();
 }
 
 // A model folder with random weights (eval-mode BatchNorm statistics set by one batch).

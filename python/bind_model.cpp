@@ -42,8 +42,9 @@ void bind_model(py::module_& m) {
              py::gil_scoped_release release;
              return Transfer(model_dir, o);
            }),
-           py::arg("model_dir"), py::arg("stride") = 5, py::arg("batch") = 64, py::arg("threads") = 0,
-           py::arg("device") = "cpu", py::arg("raw") = false)
+           py::arg("model_dir"), py::arg("stride") = TransferOptions{}.stride,
+           py::arg("batch") = TransferOptions{}.batch, py::arg("threads") = TransferOptions{}.threads,
+           py::arg("device") = TransferOptions{}.device, py::arg("raw") = TransferOptions{}.raw)
       .def("run",
            [](const Transfer& t, const FloatArray& pressure, const py::object& source, const py::object& target) {
              const BodySpec s = body_argument(source, "source body"), d = body_argument(target, "target body");

@@ -38,7 +38,7 @@ struct SimArgs {
   bool retarget = true;
   int rows = kMatRows, cols = kMatCols;
   double pitch_m = kMatPitchM, compliance_mm = SimOptions{}.compliance_m * 1000;
-  int subsamples = 3;
+  int subsamples = SimOptions{}.subsamples;
   bool ideal_sensor = false;
   std::optional<double> crosstalk, saturation_kpa, noise_kpa, threshold_kpa, quantum_kpa;
 };
@@ -183,7 +183,7 @@ void bind_motion(py::module_& m) {
         },
         py::arg("motion"), py::arg("body"), py::kw_only(), py::arg("seed") = 0, py::arg("placement") = "fixed",
         py::arg("retarget") = true, py::arg("rows") = kMatRows, py::arg("cols") = kMatCols,
-        py::arg("pitch_m") = kMatPitchM, py::arg("compliance_mm") = SimOptions{}.compliance_m * 1000, py::arg("subsamples") = 3,
+        py::arg("pitch_m") = kMatPitchM, py::arg("compliance_mm") = SimOptions{}.compliance_m * 1000, py::arg("subsamples") = SimOptions{}.subsamples,
         py::arg("ideal_sensor") = false, py::arg("crosstalk") = py::none(), py::arg("saturation_kpa") = py::none(),
         py::arg("noise_kpa") = py::none(), py::arg("threshold_kpa") = py::none(),
         py::arg("quantum_kpa") = py::none(),

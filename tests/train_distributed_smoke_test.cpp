@@ -38,13 +38,7 @@ class Distributed : public ::testing::Test {
     dir_ = fs::temp_directory_path() / ("ptnet_dist_smoke_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-    MemorySource src = ptnet::testing::synth_source(4, 2, 90);
-    DatasetInfo info;
-    info.mat = src.mat();
-    info.generator = "test";
-    DatasetWriter w((dir_ / "data.h5").string(), info, src.bodies(), false);
-    for (const auto& m : src.sequences()) w.add(m, src.read_all(m.name));
-    w.commit();
+    ptnet::testing::write_source(ptnet::testing::synth_source(4, 2, 90), (dir_ / "data.h5").string());
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
   static inline fs::path dir_;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "ptnet/data.hpp"
 #include "ptnet/train.hpp"
 
 namespace ptnet::testing {
@@ -64,6 +65,16 @@ inline MemorySource synth_source(int retargeted = 6, int motions = 3, int frames
       src.add_sequence(meta, synth_sequence(m, body, frames, mat));
     }
   return src;
+}
+
+// `src` written as a dataset file (for the CLI tests).
+inline void write_source(const MemorySource& src, const std::string& path) {
+  DatasetInfo info;
+  info.mat = src.mat();
+  info.generator = "test";
+  DatasetWriter w(path, info, src.bodies(), false);
+  for (const auto& m : src.sequences()) w.add(m, src.read_all(m.name));
+  w.commit();
 }
 
 // Options for a few-second training run on the synthetic data.

@@ -190,11 +190,7 @@ void Communicator::lost(const std::string& what, const std::string& detail) {
               " stops (" + detail + ")");
 }
 
-void Communicator::allreduce(std::vector<at::Tensor>& tensors, const std::string& what) {
-  if (size_ == 1 || tensors.empty()) return;
-  std::vector<at::Tensor> flat_parts;
-  for (const auto& t : tensors) flat_parts.push_back(t.detach().reshape({-1}).to(torch::kFloat32));
-  std::vector<at::Tensor> buffer{torch::cat(flat_parts)};
+void Communicator::sum(std::vector<at::Tensor>& buffer, const std::string& what) {
   const auto t0 = Clock::now();
   try {
     impl_->group->allreduce(buffer)->wait();
@@ -203,7 +199,15 @@ void Communicator::allreduce(std::vector<at::Tensor>& tensors, const std::string
   }
   stats_.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
   stats_.calls += 1;
-  stats_.bytes += buffer[0].numel() * std::int64_t(sizeof(float));
+  stats_.bytes += buffer[0].numel() * std::int64_t(buffer[0].element_size());
+}
+
+void Communicator::allreduce(std::vector<at::Tensor>& tensors, const std::string& what) {
+  if (size_ == 1 || tensors.empty()) return;
+  std::vector<at::Tensor> flat_parts;
+  for (const auto& t : tensors) flat_parts.push_back(t.detach().reshape({-1}).to(torch::kFloat32));
+  std::vector<at::Tensor> buffer{torch::cat(flat_parts)};
+  sum(buffer, what);
   std::int64_t offset = 0;
   for (auto& t : tensors) {
     const std::int64_t n = t.numel();
@@ -216,15 +220,7 @@ void Communicator::allreduce(std::vector<at::Tensor>& tensors, const std::string
 void Communicator::allreduce(std::vector<double>& values, const std::string& what) {
   if (size_ == 1 || values.empty()) return;
   std::vector<at::Tensor> buffer{torch::tensor(values, torch::kFloat64)};
-  const auto t0 = Clock::now();
-  try {
-    impl_->group->allreduce(buffer)->wait();
-  } catch (const std::exception& e) {
-    lost(what, short_detail(e));
-  }
-  stats_.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-  stats_.calls += 1;
-  stats_.bytes += std::int64_t(values.size() * sizeof(double));
+  sum(buffer, what);
   const double* p = buffer[0].data_ptr<double>();
   std::copy(p, p + values.size(), values.begin());
 }

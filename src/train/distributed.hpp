@@ -66,6 +66,8 @@ class Communicator {
   struct Impl;
   Communicator(int rank, int size, std::unique_ptr<Impl> impl);
   [[noreturn]] void lost(const std::string& what, const std::string& detail);
+  // The sum over ranks of buffer[0] in place, timed and counted in stats_.
+  void sum(std::vector<at::Tensor>& buffer, const std::string& what);
 
   int rank_ = 0, size_ = 1;
   std::unique_ptr<Impl> impl_;
