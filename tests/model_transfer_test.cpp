@@ -123,6 +123,36 @@ TEST_F(TransferTest, ContactThresholdZeroesOnlyWeakCells) {
   fs::remove_all(p);
 }
 
+TEST_F(TransferTest, MirrorAveragingMakesTheTransferMirrorSymmetric) {
+  // ModelConfig::mirror: the transfer of a left-right mirrored recording is
+  // the mirrored transfer (float rounding apart). The same weights without it
+  // are not symmetric, so the property comes from the averaging.
+  const auto mirrored = [](PressureSequence s) {
+    for (int t = 0; t < s.frames(); ++t)
+      for (int r = 0; r < s.mat.rows; ++r) std::reverse(&s.at(t, r, 0), &s.at(t, r, 0) + s.mat.cols);
+    return s;
+  };
+  const auto asymmetry = [&](const Transfer& net) {
+    const PressureSequence in = synth_sequence(1, female_, 40, src_->mat());
+    const PressureSequence a = mirrored(net.run(in, female_, male_)), b = net.run(mirrored(in), female_, male_);
+    double worst = 0, peak = 0;
+    for (std::size_t i = 0; i < a.kpa.size(); ++i) {
+      worst = std::max(worst, double(std::abs(a.kpa[i] - b.kpa[i])));
+      peak = std::max(peak, double(a.kpa[i]));
+    }
+    EXPECT_GT(peak, 1.0);
+    return worst / peak;
+  };
+  fs::path p = copy_model("mirror");
+  auto j = nlohmann::json::parse(std::ifstream(p / "config.json"));
+  ASSERT_FALSE(j["architecture"]["mirror"].get<bool>());
+  j["architecture"]["mirror"] = true;
+  std::ofstream(p / "config.json") << j.dump();
+  EXPECT_GT(asymmetry(Transfer(dir_.string())), 1e-2);
+  EXPECT_LT(asymmetry(Transfer(p.string())), 1e-5);
+  fs::remove_all(p);
+}
+
 TEST_F(TransferTest, BadInputsAreClearErrors) {
   Transfer net(dir_.string());
   PressureSequence short_seq = synth_sequence(0, female_, 20, src_->mat());

@@ -91,6 +91,38 @@ TEST(TrainLearn, FastPresetArchitectureBeatsBodyScaleOnAHeldOutBody) {
   fs::remove_all(dir);
 }
 
+TEST(TrainLearn, MirrorAveragingIsKeptOnlyWhereValidationSaysSo) {
+  // TrainOptions::mirror trains on mirrored windows too, then measures the
+  // validation RMSE with and without mirror averaging and records the choice
+  // in config.json (architecture.mirror) and the options.
+  MemorySource src = synth_source(4, 2, 90);
+  fs::path dir = temp_dir("mirror");
+  TrainOptions o = synth_options(2, Arch::frame, Align::zoom);
+  o.model.window = 1;
+  o.mirror = true;
+  std::vector<std::string> lines;
+  o.progress = [&](const Progress& p) {
+    if (!p.line.empty()) lines.push_back(p.line);
+  };
+  train(src, dir.string(), o);
+  double plain = 0, averaged = 0;
+  std::string verdict;
+  for (const auto& l : lines) {
+    char word[16] = {};
+    if (std::sscanf(l.c_str(), "train: mirror averaging: val RMSE %lf -> %lf kPa, %15s", &plain, &averaged, word) == 3)
+      verdict = word;
+  }
+  ASSERT_FALSE(verdict.empty()) << "no mirror line in the log";
+  ASSERT_GT(plain, 0);
+  const ModelDir md = read_model_dir(dir.string());
+  EXPECT_EQ(md.model.mirror, averaged < plain);
+  EXPECT_EQ(verdict, averaged < plain ? "kept" : "not");
+  EXPECT_TRUE(md.options["mirror"].get<bool>());
+  // The recorded validation RMSE is the one of the chosen inference.
+  EXPECT_NEAR(md.metrics["val_rmse_kpa"].get<double>(), std::min(plain, averaged), 1e-3);
+  fs::remove_all(dir);
+}
+
 TEST(TrainLearn, ValidationLossHalvesFromTheFirstEpoch) {
   MemorySource src = synth_source(6, 3, 120);
   fs::path dir = temp_dir("learn");

@@ -146,6 +146,14 @@ class InferenceNet {
   std::vector<Layer> folded_;     // conv0-5 with BN and FiLM folded
 };
 
+// ModelConfig::mirror: (forward(x) + mirror(forward(mirror(x)))) / 2, mirror
+// the flip of the last dimension (the mat's columns). `forward` maps
+// [N, T, H, W] -> [N, T, H, W]. The one place inference and validation average.
+template <class Forward>
+torch::Tensor mirror_averaged(const Forward& forward, const torch::Tensor& x) {
+  return forward(x).add(forward(x.flip({-1})).flip({-1})).mul_(0.5);
+}
+
 // Trainable parameters of a module.
 std::int64_t parameter_count(const torch::nn::Module& module);
 

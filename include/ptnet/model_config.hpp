@@ -81,6 +81,12 @@ struct ModelConfig {
   // output is 0 where the logit is < 0 and at least the data's smallest
   // reading (the sensor's activation threshold) where it is > 0.
   bool contact = false;
+  // Left-right mirror averaging at inference: the output is the mean of the
+  // network on the input and, mirrored back, on the input mirrored through the
+  // mat's long axis (columns c <-> cols - 1 - c). Bodies are left-right
+  // symmetric, so both are estimates of one map. Training decides it on the
+  // validation windows (TrainOptions::mirror); mirror_averaged() (model.hpp).
+  bool mirror = false;
   static ModelConfig paper() { return {}; }
   static ModelConfig fast() {
     ModelConfig c;

@@ -120,6 +120,11 @@ struct TrainOptions {
   int crop_rows = 0;                // Arch::frame: train on this many mat rows around the window's
                                     // pressure (0 = the whole mat); validation uses the whole mat.
                                     // The window networks (fully connected layers) ignore it.
+  // Every second window of a micro-batch is mirrored left-right
+  // (input and truth, through the mat's long axis: a mirrored motion on the
+  // same, symmetric bodies), and after training ModelConfig::mirror (mirror
+  // averaging at inference) is kept if it lowers the validation RMSE.
+  bool mirror = false;
   bool fit_contact_threshold = true;  // after training, fit the output activation threshold
   bool resume = false;              // continue from OUT/checkpoint.pt
   std::string init;                 // start from this model folder's weights

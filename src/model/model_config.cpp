@@ -148,7 +148,8 @@ std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
 json to_json(const ModelConfig& c) {
   return json{{"arch", arch_name(c.arch)}, {"align", align_name(c.align)}, {"window", c.window}, {"rows", c.rows},
               {"cols", c.cols}, {"channels", c.channels}, {"hidden", c.hidden},
-              {"latent", c.latent}, {"context", c.context}, {"contact", c.contact}, {"attributes", kAttributes},
+              {"latent", c.latent}, {"context", c.context}, {"contact", c.contact}, {"mirror", c.mirror},
+              {"attributes", kAttributes},
               {"output", "relu"}, {"pooling", "max 2x2 ceil, indices shared with the decoder"},
               {"parameters", parameter_count(c)}};
 }
@@ -221,6 +222,7 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   c.latent = get<int>(j, "latent", where);
   if (j.contains("context")) c.context = get<int>(j, "context", where);
   if (j.contains("contact")) c.contact = get<bool>(j, "contact", where);
+  if (j.contains("mirror")) c.mirror = get<bool>(j, "mirror", where);
   try {
     validate(c);
   } catch (const Error& e) {

@@ -39,12 +39,14 @@ std::unique_ptr<LoadedModel> load_model(const std::string& model_dir, const std:
 }
 
 torch::Tensor LoadedModel::forward(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target) {
-  if (fast) {
-    std::lock_guard<std::mutex> lock(mutex);
-    return fast->forward(x, source, target);
-  }
+  const auto once = [&](const torch::Tensor& in) {
+    if (fast) return fast->forward(in, source, target);
+    return net->forward(in.to(device), source.to(device), target.to(device)).cpu();
+  };
+  std::unique_lock<std::mutex> lock(mutex, std::defer_lock);
+  if (fast) lock.lock();
   torch::NoGradGuard no_grad;
-  return net->forward(x.to(device), source.to(device), target.to(device)).cpu();
+  return dir.model.mirror ? mirror_averaged(once, x) : once(x);
 }
 
 struct Transfer::Impl {

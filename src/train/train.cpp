@@ -61,6 +61,7 @@ TrainOptions TrainOptions::from_preset(const std::string& name) {
       o.samples_per_epoch = 16384;
       o.val_samples = 8192;
       o.lr_halve_every = 8;
+      o.mirror = true;             // docs/results.md: the full preset with and without
     }
     return o;
   }
@@ -85,6 +86,7 @@ std::string TrainOptions::summary() const {
   else s << "every window";
   if (crop_rows > 0) s << " (" << crop_rows << "-row crops)";
   if (model.contact) s << ", contact head (cross-entropy weight " << contact_weight << ")";
+  if (mirror) s << ", mirrored windows";
   s << ", patience " << patience << ", " << threads << " thread" << (threads == 1 ? "" : "s");
   return s.str();
 }
@@ -105,7 +107,7 @@ json options_json(const TrainOptions& o) {
               {"contact_weight", o.contact_weight},
               {"init", o.init},            {"val_fraction", 0.1},
               {"fit_contact_threshold", o.fit_contact_threshold},
-              {"identity_pairs", o.identity_pairs}, {"crop_rows", o.crop_rows},
+              {"identity_pairs", o.identity_pairs}, {"crop_rows", o.crop_rows}, {"mirror", o.mirror},
               {"world_size", o.world_size}};
 }
 
@@ -242,6 +244,19 @@ void crop_to_pressure(Batch& b, int rows) {
   b.y = torch::stack(ys);
 }
 
+// TrainOptions::mirror: windows 1, 3, 5, ... of a micro-batch (the epoch's
+// order is shuffled) mirrored through the mat's long axis, input and truth.
+void mirror_every_second(Batch& b) {
+  using torch::indexing::None;
+  using torch::indexing::Slice;
+  const auto odd = Slice(1, None, 2);
+  for (torch::Tensor* t : {&b.x, &b.y}) {
+    torch::Tensor out = t->clone();
+    out.index_put_({odd}, t->index({odd}).flip({-1}));
+    *t = out;
+  }
+}
+
 // Content loss (MSE) on the output ReLU(raw), except that cells whose truth
 // is > 0 use the raw value: their gradient never dies (see forward_raw).
 // Equal to the MSE of the output wherever raw >= 0 or truth == 0. With a
@@ -283,8 +298,10 @@ double binary_r2_from_counts(double mismatches, double ones, double n) {
 
 // Distributed: the micro-batches are dealt round-robin to the ranks and the
 // sums all-reduced, so every rank gets the whole validation set's result.
+// `mirrored`: the network's output averaged as at inference with ModelConfig::mirror.
 ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const WindowIndex& index,
-                         const TrainOptions& o, double scale_kpa, bool baselines, Communicator& comm) {
+                         const TrainOptions& o, double scale_kpa, bool baselines, Communicator& comm,
+                         bool mirrored = false) {
   const std::int64_t total = index.val_size();
   const std::int64_t n = o.val_samples > 0 ? std::min(o.val_samples, total) : total;
   net->eval();
@@ -303,7 +320,8 @@ ValResult validate_model(PressureTransferNet& net, Batcher& batcher, const Windo
       return;
     }
     Batch b = batcher.load(refs, baselines);
-    auto out = net->forward(b.x, b.sa, b.ta);
+    const auto forward = [&](const torch::Tensor& x) { return net->forward(x, b.sa, b.ta); };
+    auto out = mirrored ? mirror_averaged(forward, b.x) : forward(b.x);
     sum += torch::mse_loss(out, b.y, torch::Reduction::Sum).item<double>();
     if (baselines) {
       copy_sum += torch::mse_loss(b.src, b.y, torch::Reduction::Sum).item<double>();
@@ -711,6 +729,7 @@ double train_epoch(const Run& run, PressureTransferNet& net, torch::optim::Adam&
       if (comm.distributed()) shared_bn.before_micro_batch();
       Batch b = batcher.load(part);
       if (o.crop_rows > 0 && run.md.model.arch == Arch::frame) crop_to_pressure(b, o.crop_rows);
+      if (o.mirror) mirror_every_second(b);
       auto loss = loss_fn(o, net->forward_parts(b.x, b.sa, b.ta), b.y) * (double(part.size()) / double(refs.size()));
       const double part_loss = loss.item<double>();
       if (!std::isfinite(part_loss))
@@ -816,7 +835,14 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
     check_weights_digest(*net, recorded_digest(md, "model.pt"), run.best_path, run.config_path);
     net->to(run.device);
   }
-  const ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true, run.comm);
+  ValResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true, run.comm);
+  if (o.mirror) {  // mirror averaging at inference, kept if it helps on validation
+    const ValResult m = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true, run.comm, true);
+    md.model.mirror = m.rmse_kpa < v.rmse_kpa;
+    run.log("train: mirror averaging: val RMSE " + fmt("%.4f", v.rmse_kpa) + " -> " + fmt("%.4f", m.rmse_kpa) +
+            " kPa, " + (md.model.mirror ? "kept" : "not kept"));
+    if (md.model.mirror) v = m;
+  }
   // The output activation threshold that best matches the truth's contact
   // area on the validation windows (the first candidate, 0.5 kPa, is the
   // binarisation threshold itself: no change to the binary maps).
