@@ -26,7 +26,9 @@ reproduced by transfer() below:
      (weight_kg - weight_mean_kg) / weight_std_kg], float32;
   3. windows of T frames every `stride` frames (plus one ending at the last
      frame); each output frame is the mean of the windows covering it, times
-     pressure_scale_kpa;
+     pressure_scale_kpa; with "architecture.mirror" true, each window's output
+     is the mean of the network on the window and, flipped back, on the
+     window flipped left-right (the last axis);
   4. cells below normalisation.contact_threshold_kpa set to 0 (unless raw).
 """
 import json
@@ -282,7 +284,10 @@ def transfer(net, cfg, pressure, source, target, stride=5, raw=False, batch=64):
         for b in range(0, len(starts), batch):
             chunk = starts[b:b + batch]
             windows = torch.stack([inp[s:s + k] for s in chunk])               # [n,K,H,W]
-            y = net(windows, sa.expand(len(chunk), ATTRIBUTES), ta.expand(len(chunk), ATTRIBUTES))
+            s_n, t_n = sa.expand(len(chunk), ATTRIBUTES), ta.expand(len(chunk), ATTRIBUTES)
+            y = net(windows, s_n, t_n)
+            if a.get("mirror", False):
+                y = 0.5 * (y + net(windows.flip(-1), s_n, t_n).flip(-1))
             for i, s in enumerate(chunk):
                 total[s:s + k] += y[i]
                 cover[s:s + k] += 1.0

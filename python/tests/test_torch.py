@@ -77,6 +77,24 @@ class TorchTest(unittest.TestCase):
                     diff = np.abs(theirs - ours).max() / scale
                     self.assertLessEqual(diff, TOL, f"{model}: max |difference| {diff} (normalised)")
 
+    def test_whole_transfer_with_mirror_averaging(self):
+        import json, shutil
+        folder = os.path.join(self.dir, "frame_mirror")
+        shutil.rmtree(folder, ignore_errors=True)
+        shutil.copytree(fixture("frame"), folder)
+        with open(os.path.join(folder, "config.json")) as f:
+            cfg = json.load(f)
+        cfg["architecture"]["mirror"] = True
+        with open(os.path.join(folder, "config.json"), "w") as f:
+            json.dump(cfg, f)
+        net, cfg = self.pt.load(folder, self.weights["frame"])
+        ours = ptnet.Transfer(folder, raw=True).run(self.seq, source=self.source, target=self.target)
+        plain = ptnet.Transfer(fixture("frame"), raw=True).run(self.seq, source=self.source, target=self.target)
+        theirs = self.pt.transfer(net, cfg, self.seq, self.source, self.target, raw=True)
+        scale = cfg["normalisation"]["pressure_scale_kpa"]
+        self.assertLessEqual(np.abs(theirs - ours).max() / scale, TOL)
+        self.assertGreater(np.abs(ours - plain).max() / scale, 10 * TOL, "averaging changed nothing")
+
     def test_zoom_alignment(self):
         for s in (0.83, 1.0, 1.17):
             a = self.pt.zoom_about_centre(self.seq, s, 1.3)
