@@ -61,7 +61,7 @@ TrainOptions TrainOptions::from_preset(const std::string& name) {
       o.samples_per_epoch = 16384;
       o.val_samples = 8192;
       o.lr_halve_every = 8;
-      o.mirror = true;             // docs/results.md: the full preset with and without
+      o.mirror = true;             // corpus unseen 0.852 -> 0.833 x body scale (docs/results.md)
     }
     return o;
   }
