@@ -100,7 +100,7 @@ struct TrainOptions {
   int batch = 1028;                 // windows per optimiser step
   int micro_batch = 64;             // windows per forward/backward pass; gradients of a batch's
                                     // micro-batches are accumulated (bounds memory; BatchNorm
-                                    // statistics are per micro-batch). 16 takes ~39 % less time
+                                    // statistics are per micro-batch). 16 is faster per window
                                     // but learns worse: corpus fast preset validation
                                     // RMSE 3.149 vs 2.851 kPa (docs/model.md "Speed")
   double lr = 0.01;                 // Adam initial learning rate
