@@ -109,6 +109,11 @@ struct MotionPlacement {
   Eigen::Vector2d anchor{0, 0};          // frame 0's pelvis (x, y): retarget scales the root path about it
   std::vector<Eigen::Vector2d> centre;   // [T] world (x, y), m
   std::vector<double> floor;             // [T] height of the capture floor under the motion, m (empty: z = 0)
+  // Each foot's pitch correction [left, right] (rad, toe down > 0; 0: none),
+  // decided on the motion's kFloorReferenceHeightCm copy: an angle, the same
+  // on every copy (detail::foot_pitch_offsets decides per copy otherwise, and
+  // its "planted" speed test passes other frames on a short copy).
+  std::array<double, 2> foot_pitch{0, 0};
   // The placement of a copy whose horizontal root path is this motion's
   // scaled by `ratio` about `anchor` (a retargeted copy: ratio =
   // retarget_scale(source, height_cm)): same axis, centres and floor scaled.
@@ -117,9 +122,10 @@ struct MotionPlacement {
 
 // The placement of `motion` for options.placement (fixed: the pelvis path's
 // bounding box centred; follow: its Gaussian-smoothed path, sigma
-// options.follow_smoothing_s) and its floor (options.floor_window_s; found on
-// the motion retargeted to kFloorReferenceHeightCm, scaled back). Throws
-// Error for an empty motion.
+// options.follow_smoothing_s), its feet's pitch correction and its floor
+// (options.floor_window_s), both found on the motion retargeted to
+// kFloorReferenceHeightCm (the floor scaled back). Throws Error for an empty
+// motion.
 MotionPlacement place_motion(const Motion& motion, const SimOptions& options);
 inline constexpr double kFloorReferenceHeightCm = 170.0;
 // The placement of source's copy retargeted onto a body of height_cm:

@@ -101,8 +101,7 @@ std::array<double, 2> foot_pitch_offsets(const Motion& motion) {
   return out;
 }
 
-Motion pitch_corrected(const Motion& motion) {
-  const std::array<double, 2> pitch = foot_pitch_offsets(motion);
+Motion pitch_corrected(const Motion& motion, const std::array<double, 2>& pitch) {
   Motion out = motion;
   if (std::abs(pitch[0]) > 0.03 || std::abs(pitch[1]) > 0.03)  // ~2 degrees
     for (Pose& p : out.frames) correct_foot_pitch(p, pitch);
@@ -201,17 +200,21 @@ MotionPlacement place_motion(const Motion& motion, const SimOptions& options) {
     py = smooth_path(py);
     for (int t = 0; t < T; ++t) out.centre[t] = Eigen::Vector2d(px[t], py[t]);
   }
+  // The feet's pitch and the floor of the copy at a reference height (on a
+  // reference body), the floor scaled back: a retargeted copy is this one
+  // scaled by the height ratio, and so is its floor, whatever the body's
+  // girth; its angles are this copy's.
+  const Motion reference = retarget(motion, kFloorReferenceHeightCm);
+  out.foot_pitch = detail::foot_pitch_offsets(reference);
   if (options.floor_window_s > 0) {
-    // The floor of the copy at a reference height on a reference body,
-    // scaled back: a retargeted copy is this one scaled by the height ratio,
-    // and so is its floor, whatever the body's girth.
     BodySpec spec;
     spec.id = "floor-reference";
     spec.sex = Sex::male;
     spec.height_cm = kFloorReferenceHeightCm;
     spec.weight_kg = 65;
     const double ratio = retarget_scale(motion, kFloorReferenceHeightCm);
-    out.floor = detail::floor_track(detail::pitch_corrected(retarget(motion, kFloorReferenceHeightCm)), Body(spec), options.floor_window_s, 0.25);
+    out.floor = detail::floor_track(detail::pitch_corrected(reference, out.foot_pitch), Body(spec),
+                                    options.floor_window_s, 0.25);
     for (double& z : out.floor) z /= ratio;
   }
   return out;

@@ -21,9 +21,9 @@ namespace ptnet::detail {
 std::array<double, 2> foot_pitch_offsets(const Motion& motion);
 // Rotates each toe joint about its ankle (down by the offset).
 void correct_foot_pitch(Pose& pose, const std::array<double, 2>& offsets);
-// The motion with its feet pitched back to the canonical sole when a foot is
-// off by more than ~2 degrees; unchanged otherwise (canonical motions).
-Motion pitch_corrected(const Motion& motion);
+// The motion with its feet pitched by `offsets` (MotionPlacement::foot_pitch)
+// when a foot's is more than ~2 degrees; unchanged otherwise (canonical motions).
+Motion pitch_corrected(const Motion& motion, const std::array<double, 2>& offsets);
 
 // The floor under a motion, frame by frame: the lower envelope over
 // `window_s` (centred) of the sole planes of the feet that barely move

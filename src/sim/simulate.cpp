@@ -63,7 +63,7 @@ PressureSequence simulate(const Motion& input, const Body& body, const SimOption
     throw Error("simulate: motion '" + input.name + "' has " + std::to_string(input.size()) +
                 " frames but its placement " + std::to_string(place.centre.size()) + " centres and " +
                 std::to_string(place.floor.size()) + " floor heights");
-  const Motion motion = detail::pitch_corrected(input);
+  const Motion motion = detail::pitch_corrected(input, place.foot_pitch);
   const int T = motion.size();
   const MatSpec& mat = options.mat;
   PressureSequence seq(mat, T, motion.fps);
