@@ -106,7 +106,7 @@ struct SimulateDatasetOptions {
   int chunk_jobs = 0;             // jobs per chunk; 0: 8 x threads (at least 16)
   bool force = false;             // overwrite an existing output
   bool noise_floor = true;        // /floor/<name> for sequences on original bodies
-  int compression = kDefaultCompression;  // zlib level 0-9 of the sequences (DatasetInfo::compression)
+  int compression = kDefaultCompression;  // deflate level 0-9 of the sequences (DatasetInfo::compression)
   std::string generator = "ptnet simulate";
   std::string config_json;        // "" : built from the options
   // Shard `shard_index` of `shard_count` (ptnet simulate --shard K/N): the

@@ -134,7 +134,7 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetInfo& info,
     throw Error::in(path, "mat must have positive rows, cols and pitch");
   if (!(info.fps > 0)) throw Error::in(path, "fps must be positive");
   if (info.compression < 0 || info.compression > 9)
-    throw Error::in(path, "compression must be a zlib level 0-9, found " + std::to_string(info.compression));
+    throw Error::in(path, "compression must be a deflate level 0-9, found " + std::to_string(info.compression));
   if (info.compression > 0) impl->deflater = std::make_unique<h5::ChunkDeflater>(info.compression);
   for (const auto& b : bodies) {
     check_body(path, b);

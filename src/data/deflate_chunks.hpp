@@ -1,6 +1,7 @@
 // deflate_chunks.hpp (internal to the data stage): float32 frames written to
-// a chunked HDF5 dataset as chunks we deflate ourselves (libdeflate, zlib
-// format) and hand to HDF5 with H5Dwrite_chunk. The dataset's filter
+// a chunked HDF5 dataset as chunks we deflate ourselves (zlib format: level 1
+// with RunDeflater, run_deflate.hpp; 2-9 with libdeflate at that level) and
+// hand to HDF5 with H5Dwrite_chunk. The dataset's filter
 // pipeline is HDF5's standard deflate filter alone, so every reader (h5py,
 // h5dump, DatasetReader) inflates the chunks with no plugin.
 #pragma once
@@ -10,11 +11,13 @@
 #include <cstddef>
 #include <vector>
 
+#include "data/run_deflate.hpp"
+
 struct libdeflate_compressor;
 
 namespace ptnet::h5 {
 
-// One compressor at one level (1-9), reused for every chunk. Not thread-safe:
+// One compressor at one level (1: zero runs only, 2-9: libdeflate's), reused for every chunk. Not thread-safe:
 // one per writing thread.
 class ChunkDeflater {
  public:
@@ -35,7 +38,8 @@ class ChunkDeflater {
 
  private:
   int level_;
-  libdeflate_compressor* compressor_;
+  libdeflate_compressor* compressor_;  // null at level 1
+  RunDeflater runs_;                   // level 1
   std::vector<unsigned char> out_;  // compressed chunk
   std::vector<float> edge_;         // the last chunk, zero-padded
 };
