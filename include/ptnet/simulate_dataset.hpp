@@ -21,8 +21,8 @@
 // Each clip is placed on the mat once, from the source motion (place_motion),
 // and every body's copy gets that placement scaled by retarget_scale, so the
 // copies of one motion differ by body scale, not by where they lie.
-// Sequences on bodies with role "original" (the test bodies) are also
-// simulated with a second sensor seed, floor_seed(seed, name), into
+// Sequences on bodies with role "original" (the test bodies) are also read
+// by the sensor with a second seed, floor_seed(seed, name) (simulate_reads), into
 // /floor/<name>: the noise floor that `ptnet evaluate` reports.
 #pragma once
 
