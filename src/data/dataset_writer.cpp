@@ -79,12 +79,11 @@ void check_frames(const std::string& path, const std::string& where, const Datas
   const int frames = seq.frames();
   if (frames <= 0 || seq.kpa.size() != size_t(frames) * mat.cells())
     throw Error::in(path, where + ": has no frames");
-  for (size_t i = 0; i < seq.kpa.size(); ++i) {
-    if (!std::isfinite(seq.kpa[i])) {
-      size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
-      throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
-                                std::to_string(r) + " col " + std::to_string(c));
-    }
+  const size_t i = first_non_finite(seq.kpa.data(), seq.kpa.size());
+  if (i < seq.kpa.size()) {
+    size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
+    throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
+                              std::to_string(r) + " col " + std::to_string(c));
   }
 }
 

@@ -186,7 +186,6 @@ void Rasteriser::clear() {
 
 void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
                             FrameTrace* trace) {
-  std::fill(frame, frame + mat_.cells(), 0.0f);
   if (trace) *trace = FrameTrace{};
   if (!(zlo_ < band_) || !(load_n > 0)) {  // airborne, or nothing to carry
     clear();
@@ -256,7 +255,7 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
       if (acc > 0) moment(acc, cell_x(r), cell_y(c));
     }
   if (!(m0 > 0)) {
-    std::fill(frame, frame + mat_.cells(), 0.0f);
+    for (int r = r0; r <= r1; ++r) std::fill(frame + r * mat_.cols + c0, frame + r * mat_.cols + c1 + 1, 0.0f);
     clear();
     return;
   }

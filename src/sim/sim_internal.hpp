@@ -56,7 +56,8 @@ class Rasteriser {
 
   // Sinks the body into the foundation until it carries load_n (stiffness in
   // Pa per m of penetration) and writes each cell's pressure (kPa) into
-  // frame[R * C]; all zero when no surface is within the compliance band.
+  // frame[R * C], which must be all zero on entry (only the cells under the
+  // contact are written); all zero when no surface is within the compliance band.
   // The pressures times the cell area sum to load_n over all contact, on and
   // off the mat. Clears the rasterised state. Fills *trace if given (needs
   // rasterise(..., true)).

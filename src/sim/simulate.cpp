@@ -74,7 +74,8 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
   const Motion motion = detail::pitch_corrected(input);
   const int T = motion.size();
   const MatSpec& mat = options.mat;
-  std::vector<PressureSequence> reads(seeds.size(), PressureSequence(mat, T, motion.fps));
+  std::vector<PressureSequence> reads;  // all zero (Rasteriser::distribute writes only the contact)
+  for (std::size_t k = 0; k < seeds.size(); ++k) reads.emplace_back(mat, T, motion.fps);
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
   const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
