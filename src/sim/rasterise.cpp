@@ -12,6 +12,9 @@
 #include <limits>
 
 #include <Eigen/LU>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "sim_internal.hpp"
 
@@ -31,7 +34,8 @@ Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m, 
       half_w_(0.5 * mat.cols * mat.pitch_m),
       ns_rows_(mat.rows * subsamples),
       ns_cols_(mat.cols * subsamples),
-      zbuf_(std::size_t(ns_rows_) * ns_cols_, kInf) {
+      zbuf_(std::size_t(ns_rows_) * ns_cols_, kInf),
+      hit_(std::size_t(ns_cols_), 0) {
   di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
   zlo_ = kInf;
 }
@@ -217,7 +221,16 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
   if (dirty)
     for (int i = di0_; i <= di1_; ++i) {
       const float* z = &zbuf_[std::size_t(i) * ns_cols_];
-      for (int j = dj0_; j <= dj1_; ++j) bin(z[j]);
+      int j = dj0_;
+#if defined(__SSE2__)
+      // Four samples at a time: most are empty (+inf); the others are binned
+      // in the same order as one by one.
+      const __m128 top = _mm_set1_ps(ztop);
+      for (; j + 3 <= dj1_; j += 4)
+        for (int m = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(z + j), top)); m; m &= m - 1)
+          bin(z[j + __builtin_ctz(unsigned(m))]);
+#endif
+      for (; j <= dj1_; ++j) bin(z[j]);
     }
   for (const OffSample& o : off_) bin(o.z);
   const double sample_area = ds_ * ds_;
@@ -242,8 +255,23 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
   };
   for (const OffSample& o : off_)
     if (o.z < lv) moment((lv - o.z) * inv_s2, sample_x(o.i), sample_y(o.j));
-  for (int r = r0; r <= r1; ++r)
+  // hit[j]: some sample of column j of the cell row is below the level (the
+  // members in locals: the byte stores could alias them, and the loops then
+  // do not vectorise).
+  unsigned char* __restrict hit = hit_.data();
+  const int S = s_, jb = c0 * S, je = (c1 + 1) * S;
+  const std::size_t stride = std::size_t(ns_cols_);
+  for (int r = r0; r <= r1; ++r) {
+    const float* __restrict z0 = &zbuf_[std::size_t(r * S) * stride];
+    for (int j = jb; j < je; ++j) hit[j] = z0[j] < lv;
+    for (int a = 1; a < S; ++a) {
+      const float* __restrict za = z0 + std::size_t(a) * stride;
+      for (int j = jb; j < je; ++j) hit[j] |= za[j] < lv;
+    }
     for (int c = c0; c <= c1; ++c) {
+      unsigned char any = 0;
+      for (int b = 0; b < S; ++b) any |= hit[c * S + b];
+      if (!any) continue;  // no penetration: the cell stays 0
       float acc = 0;
       for (int a = 0; a < s_; ++a) {
         const float* z = &zbuf_[std::size_t(r * s_ + a) * ns_cols_ + c * s_];
@@ -254,6 +282,7 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
       frame[r * mat_.cols + c] = acc;
       if (acc > 0) moment(acc, cell_x(r), cell_y(c));
     }
+  }
   if (!(m0 > 0)) {
     for (int r = r0; r <= r1; ++r) std::fill(frame + r * mat_.cols + c0, frame + r * mat_.cols + c1 + 1, 0.0f);
     clear();

@@ -102,6 +102,7 @@ class Rasteriser {
   double ds_, half_l_, half_w_;
   int ns_rows_, ns_cols_;
   std::vector<float> zbuf_;  // [R S, C S] lowest surface height (m), +inf: none
+  std::vector<unsigned char> hit_;  // [C S] distribute's scratch
   int di0_, di1_, dj0_, dj1_;  // dirty sample rectangle
   float zlo_;                  // lowest recorded height this frame
   bool trace_ = false;
