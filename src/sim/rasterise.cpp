@@ -109,6 +109,10 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
   const int nu = sole.nu, nv = sole.nv;
   // Along a row of samples, fi, fj and z change by a constant per sample.
   const double dfi = -iu * sy * ds_, dfj = -iv * wy * ds_, dz = -zy * ds_;
+  // Members in locals: the depth stores (float) could alias the float
+  // members, which the loop would then reload per sample.
+  const float reach = reach_;
+  float zlo = zlo_;
   for (int i = i0; i <= i1; ++i) {
     const double dX = half_l_ - (i + 0.5) * ds_ - ox;
     const double dY0 = half_w_ - (j0 + 0.5) * ds_ - oy;
@@ -119,6 +123,20 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
     int lo = 0, hi = j1 - j0;
     clip_affine(fi_a, dfi, fi_lo, fi_hi, lo, hi);
     clip_affine(fj_a, dfj, -0.5, nv - 0.5, lo, hi);
+    // The table's heights are >= 0: where the plane alone is at or above
+    // the reach, no sample can be recorded (kept: one sample either side).
+    if (std::abs(dz) < 1e-12) {
+      if (!(z_a < reach)) continue;
+    } else {
+      const double kz = std::clamp((double(reach) - z_a) / dz, -1e9, 1e9);  // the plane meets the reach
+      if (dz > 0)
+        hi = std::min(hi, int(std::ceil(kz)) + 1);
+      else
+        lo = std::max(lo, int(std::floor(kz)) - 1);
+    }
+    const bool row_on = i >= 0 && i < ns_rows_ && !trace_;  // else: record() for every sample
+    float* const zrow = zbuf_.data() + std::size_t(row_on ? i : 0) * ns_cols_;
+    const int ncols = ns_cols_;
     for (int k = lo; k <= hi; ++k) {
       const double fi = fi_a + dfi * k;
       if (fi < fi_lo || fi >= fi_hi) continue;
@@ -127,9 +145,20 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
       if (ti < 0 || ti >= nu || fj < -0.5 || tj >= nv) continue;
       const float h = table[std::size_t(ti) * nv + tj];
       if (h >= SoleSurface::kOutside) continue;
-      record(i, j0 + k, float(z_a + dz * k) + h * inv_nz, owner, float(fi) * inv_nu);
+      const float z = float(z_a + dz * k) + h * inv_nz;
+      const int j = j0 + k;
+      if (row_on && j >= 0 && j < ncols) {  // record(), inlined
+        if (!(z < reach)) continue;
+        if (z < zlo) zlo = z;
+        if (z < zrow[j]) zrow[j] = z;
+      } else {
+        zlo_ = zlo;
+        record(i, j, z, owner, float(fi) * inv_nu);
+        zlo = zlo_;
+      }
     }
   }
+  zlo_ = zlo;
 }
 
 void Rasteriser::sphere(double cx, double cy, double cz, double r) {
