@@ -163,12 +163,16 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
 
 void Rasteriser::sphere(double cx, double cy, double cz, double r) {
   if (cz - r > reach_) return;
+  const double r2 = r * r;
+  // Only the disc where the lower surface is below the reach can be
+  // recorded (its radius rr, plus a sample: the exact test is per sample).
+  const double above = cz - double(reach_);
+  const double rr = (above > 0 ? std::sqrt(std::max(0.0, r2 - above * above)) : r) + ds_;
   int i0, i1, j0, j1;
-  row_range(cx - r, cx + r, i0, i1);
-  col_range(cy - r, cy + r, j0, j1);
+  row_range(cx - std::min(r, rr), cx + std::min(r, rr), i0, i1);
+  col_range(cy - std::min(r, rr), cy + std::min(r, rr), j0, j1);
   if (i0 > i1 || j0 > j1) return;
   touch(i0, i1, j0, j1);
-  const double r2 = r * r;
   for (int i = i0; i <= i1; ++i) {
     const double dx = half_l_ - (i + 0.5) * ds_ - cx;
     for (int j = j0; j <= j1; ++j) {
