@@ -144,14 +144,15 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
       const int ti = int(fi + 0.5), tj = int(fj + 0.5);
       if (ti < 0 || ti >= nu || fj < -0.5 || tj >= nv) continue;
       const float h = table[std::size_t(ti) * nv + tj];
-      if (h >= SoleSurface::kOutside) continue;
       const float z = float(z_a + dz * k) + h * inv_nz;
       const int j = j0 + k;
-      if (row_on && j >= 0 && j < ncols) {  // record(), inlined
-        if (!(z < reach)) continue;
-        if (z < zlo) zlo = z;
-        if (z < zrow[j]) zrow[j] = z;
-      } else {
+      if (row_on && j >= 0 && j < ncols) {
+        // record(), inlined and without branches: a height out of reach
+        // (kOutside, off the foot, included) becomes +inf, which changes nothing.
+        const float zr = z < reach ? z : kInf;
+        zlo = std::min(zlo, zr);
+        zrow[j] = std::min(zrow[j], zr);
+      } else if (h < SoleSurface::kOutside) {
         zlo_ = zlo;
         record(i, j, z, owner, float(fi) * inv_nu);
         zlo = zlo_;
