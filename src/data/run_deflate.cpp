@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace ptnet::h5 {
 namespace {
@@ -39,9 +42,16 @@ const std::array<LenCode, kMaxMatch + 1>& len_codes() {
   return table;
 }
 
-// Zero bytes at p[0, m), counted 8 at a time.
+// Zero bytes at p[0, m), counted 16 (SSE2) or 8 at a time.
 inline std::size_t zero_run(const unsigned char* p, std::size_t m) {
   std::size_t k = 0;
+#if defined(__SSE2__)
+  for (; k + 16 <= m; k += 16) {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + k));
+    const unsigned nonzero = ~unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128()))) & 0xffffu;
+    if (nonzero) return k + std::size_t(__builtin_ctz(nonzero));
+  }
+#endif
   for (; k + 8 <= m; k += 8) {
     std::uint64_t w;
     std::memcpy(&w, p + k, 8);

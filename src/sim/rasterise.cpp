@@ -222,12 +222,12 @@ void Rasteriser::clear() {
   off_owner_.clear();
 }
 
-void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
-                            FrameTrace* trace) {
+RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target,
+                               float* frame, FrameTrace* trace) {
   if (trace) *trace = FrameTrace{};
   if (!(zlo_ < band_) || !(load_n > 0)) {  // airborne, or nothing to carry
     clear();
-    return;
+    return {};
   }
   const bool dirty = di1_ >= di0_ && dj1_ >= dj0_;
   const int r0 = dirty ? di0_ / s_ : 0, r1 = dirty ? di1_ / s_ : -1;
@@ -320,7 +320,7 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
   if (!(m0 > 0)) {
     for (int r = r0; r <= r1; ++r) std::fill(frame + r * mat_.cols + c0, frame + r * mat_.cols + c1 + 1, 0.0f);
     clear();
-    return;
+    return {};
   }
 
   // 3. Tilt towards the target: weights 1 + g . (r - c) move the centre of
@@ -390,6 +390,7 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
       if (trace->foot[f].force_n > 0) trace->foot[f].cop_u = cop[f] / trace->foot[f].force_n;
   }
   clear();
+  return {r0, r1};
 }
 
 }  // namespace ptnet::detail

@@ -31,7 +31,7 @@ inline float normalish(std::uint64_t& state) {
 }  // namespace
 
 void apply_sensor(const SensorModel& sensor, const MatSpec& mat, float* frame, float* scratch,
-                  std::uint64_t& rng) {
+                  std::uint64_t& rng, RowSpan pressed) {
   const int R = mat.rows, C = mat.cols;
   const float k = float(sensor.crosstalk);
   const float sat = float(sensor.saturation_kpa), sd = float(sensor.noise_sd_kpa);
@@ -44,7 +44,7 @@ void apply_sensor(const SensorModel& sensor, const MatSpec& mat, float* frame, f
   // is tested at once: v != 0 exactly when its bits other than the sign are
   // not all 0 (NaN included), an OR that vectorises.
   int r0 = R, r1 = -1, c0 = C, c1 = -1;
-  for (int r = 0; r < R; ++r) {
+  for (int r = std::max(0, pressed.first); r <= std::min(R - 1, pressed.last); ++r) {
     const float* row = frame + r * C;
     std::uint32_t any = 0;
     for (int c = 0; c < C; ++c) {

@@ -98,11 +98,12 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
     raster.rasterise(body, pose_body(body, local), trace != nullptr);
     const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
     const Eigen::Vector2d zmp(place.axis.dot(d), place.left.dot(d));
-    raster.distribute(com.load_n[std::size_t(t)], stiffness, options.balance_moments ? &zmp : nullptr, frame,
-                      trace ? &(*trace)[std::size_t(t)] : nullptr);
+    const detail::RowSpan pressed =
+        raster.distribute(com.load_n[std::size_t(t)], stiffness, options.balance_moments ? &zmp : nullptr, frame,
+                          trace ? &(*trace)[std::size_t(t)] : nullptr);
     for (std::size_t k = 1; k < reads.size(); ++k) std::copy(frame, frame + mat.cells(), reads[k].frame(t));
     for (std::size_t k = 0; k < reads.size(); ++k)
-      detail::apply_sensor(options.sensor, mat, reads[k].frame(t), scratch.data(), rng[k]);
+      detail::apply_sensor(options.sensor, mat, reads[k].frame(t), scratch.data(), rng[k], pressed);
   }
   return reads;
 }
