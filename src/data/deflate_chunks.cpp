@@ -3,13 +3,16 @@
 #include <libdeflate.h>
 
 #include <algorithm>
-#include <new>
+#include <string>
+
+#include "ptnet/error.hpp"
 
 namespace ptnet::h5 {
 
 ChunkDeflater::ChunkDeflater(int level)
     : level_(level), compressor_(level >= 2 ? libdeflate_alloc_compressor(level) : nullptr) {
-  if (level >= 2 && !compressor_) throw std::bad_alloc();  // levels are checked by the caller: only memory fails
+  if (level >= 2 && !compressor_)  // levels are checked by the writer: only memory fails
+    throw Error("libdeflate: cannot allocate a compressor at level " + std::to_string(level));
 }
 
 ChunkDeflater::~ChunkDeflater() { libdeflate_free_compressor(compressor_); }
@@ -29,7 +32,7 @@ void ChunkDeflater::write(const H5::DataSet& dataset, const float* data, std::si
     const auto* bytes = reinterpret_cast<const unsigned char*>(chunk);
     const std::size_t n = compressor_ ? libdeflate_zlib_compress(compressor_, bytes, chunk_bytes, out_.data(), out_.size())
                                       : runs_.compress(bytes, chunk_bytes, out_.data());
-    if (n == 0) throw H5::DataSetIException("ChunkDeflater::write", "deflate output exceeded its bound");
+    if (n == 0) throw Error("deflate: a chunk of " + std::to_string(chunk_bytes) + " bytes exceeded its bound");
     const hsize_t offset[3] = {hsize_t(t0), 0, 0};
     if (H5Dwrite_chunk(dataset.getId(), H5P_DEFAULT, 0, offset, n, out_.data()) < 0)
       throw H5::DataSetIException("ChunkDeflater::write", "H5Dwrite_chunk failed");
