@@ -157,7 +157,8 @@ void setup(CLI::App& app) {
                   "K/N: only the K-th (0-based) of N contiguous blocks of the clip x body list; "
                   "ptnet merge joins the N files (docs/distributed.md)");
   cmd->add_option("--compression", c->compression,
-                  "zlib level of the sequences, 0 (none, fastest, largest) - 9; 4 keeps ~all of 9's ratio")
+                  "Deflate level of the sequences: 1 codes zero runs only (fastest, smallest on "
+                  "sparse mats), 2-9 general deflate, 0 none (largest)")
       ->capture_default_str()
       ->check(CLI::Range(0, 9));
   cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");

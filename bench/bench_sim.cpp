@@ -95,7 +95,7 @@ void BM_SimulateMany(benchmark::State& state) {
   for (const auto& c : mocap())
     if (c.name == "005_01") m = &c;
   std::vector<ptnet::SimJob> jobs;
-  for (int i = 0; i < 8; ++i) jobs.push_back({m, &body175(), std::uint64_t(i)});
+  for (int i = 0; i < 8; ++i) jobs.push_back({m, &body175(), std::uint64_t(i), nullptr, {}});
   ptnet::SimOptions o;
   long frames = 0;
   for (auto _ : state) {

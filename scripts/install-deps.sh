@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(cmake g++ make ccache pkg-config
           libtorch-dev libgloo-dev libhdf5-dev hdf5-tools libeigen3-dev libcli11-dev
-          nlohmann-json3-dev zlib1g-dev libpng-dev libgif-dev libgtest-dev libgmock-dev
+          nlohmann-json3-dev zlib1g-dev libdeflate-dev libpng-dev libgif-dev libgtest-dev libgmock-dev
           libbenchmark-dev libopenblas0-openmp  # OpenBLAS: LibTorch falls back to netlib BLAS (~25x slower) without it
           chromium fonts-dejavu-core  # the report-page tests load index.html in headless chromium
           pybind11-dev python3-dev python3-numpy python3-h5py  # the Python module and its tests (/usr/bin/python3)

@@ -153,7 +153,7 @@ TEST(Dataset, FileLayoutAttributesAndCompression) {
     unsigned config;
     filters.push_back(plist.getFilter(i, flags, n, nullptr, sizeof name, name, config));
   }
-  EXPECT_EQ(filters, (std::vector<H5Z_filter_t>{H5Z_FILTER_SHUFFLE, H5Z_FILTER_DEFLATE}));
+  EXPECT_EQ(filters, (std::vector<H5Z_filter_t>{H5Z_FILTER_DEFLATE}));  // any reader inflates it
   // Short sequences get a chunk as long as themselves.
   f.openDataSet("sequences/walk_b__b1").getCreatePlist().getChunk(3, chunk);
   EXPECT_EQ(chunk[0], 5u);
@@ -168,6 +168,65 @@ TEST(Dataset, FileLayoutAttributesAndCompression) {
   EXPECT_EQ(bt.getMemberName(2), "height_cm");
   EXPECT_EQ(bt.getMemberName(3), "weight_kg");
   EXPECT_EQ(bt.getMemberName(4), "role");
+}
+
+// Each sequence's chunks are deflated by libdeflate and written with
+// H5Dwrite_chunk: at every level, HDF5's own deflate filter (the one h5py and
+// h5dump use) must give back the exact floats, the edge chunk included.
+TEST(Dataset, EveryCompressionLevelReadsBackBitExactThroughHdf5sDeflate) {
+  TempDir dir("ds_levels");
+  auto bodies = testing_util::two_bodies();
+  for (int level : {0, 1, 4, 6, 9}) {
+    const auto path = dir.file("l" + std::to_string(level) + ".h5");
+    DatasetInfo info;
+    info.compression = level;
+    std::vector<PressureSequence> written;
+    const int frames[] = {70, 5, 32, 65};  // edge chunks of 6, 5 (whole), none, 1
+    {
+      DatasetWriter w(path, info, bodies, false);
+      for (int i = 0; i < 4; ++i) {
+        auto s = synthetic_walk(info.mat, frames[i], info.fps, 170, 70, 7 + i);
+        s.kpa[5] = -0.0f;  // sign of zero, tiny and odd values survive
+        s.kpa[6] = 1.0e-40f;
+        s.kpa.back() = 3.25f;  // the last frame is not padding
+        w.add(testing_util::meta_for("m" + std::to_string(i), "b1"), s);
+        written.push_back(std::move(s));
+      }
+      w.commit();
+    }
+    Dataset d = Dataset::open(path);
+    H5::H5File f(path, H5F_ACC_RDONLY);
+    for (int i = 0; i < 4; ++i) {
+      const std::string name = "m" + std::to_string(i) + "__b1";
+      const PressureSequence& s = written[std::size_t(i)];
+      PressureSequence back = d.read(name);
+      ASSERT_EQ(back.kpa.size(), s.kpa.size());
+      EXPECT_EQ(std::memcmp(back.kpa.data(), s.kpa.data(), s.kpa.size() * 4), 0) << level << " " << name;
+      H5::DataSet ds = f.openDataSet("sequences/" + name);
+      std::vector<float> raw(s.kpa.size());  // HDF5's plain read path
+      ds.read(raw.data(), H5::PredType::NATIVE_FLOAT);
+      EXPECT_EQ(std::memcmp(raw.data(), s.kpa.data(), s.kpa.size() * 4), 0) << level << " " << name;
+      H5::DSetCreatPropList plist = ds.getCreatePlist();
+      if (level == 0) {
+        EXPECT_EQ(plist.getNfilters(), 0) << name;
+        continue;
+      }
+      ASSERT_EQ(plist.getNfilters(), 1) << name;
+      unsigned flags = 0, config = 0, cd[4] = {};
+      size_t n = 4;
+      char filter_name[32];
+      EXPECT_EQ(plist.getFilter(0, flags, n, cd, sizeof filter_name, filter_name, config), H5Z_FILTER_DEFLATE);
+      EXPECT_EQ(cd[0], unsigned(level)) << name;  // h5py's compression_opts
+      const hsize_t last[3] = {hsize_t((frames[i] - 1) / 32 * 32), 0, 0};
+      uint32_t mask = 99;
+      hsize_t stored = 0;
+      std::vector<unsigned char> chunk(32 * 80 * 28 * 4 + 1024);
+      ASSERT_GE(H5Dget_chunk_storage_size(ds.getId(), last, &stored), 0);
+      ASSERT_GE(H5Dread_chunk(ds.getId(), H5P_DEFAULT, last, &mask, chunk.data()), 0);
+      EXPECT_EQ(mask, 0u) << name;  // the deflate filter applies to every chunk
+      EXPECT_LT(stored, hsize_t(std::min(frames[i], 32)) * 80 * 28 * 4) << name;
+    }
+  }
 }
 
 TEST(Dataset, SameInputSameBytes) {
@@ -412,6 +471,8 @@ TEST(DatasetTools, H5pyReadsItAsDocumented) {
 f = h5py.File(sys.argv[1], "r")
 seq = f["sequences/walk_a__b2"]
 kpa = seq[:]                                    # float32 [T, rows, cols], kPa
+assert seq.compression == "gzip" and not seq.shuffle, (seq.compression, seq.shuffle)
+open(sys.argv[2], "wb").write(kpa.tobytes())
 bodies = f["bodies"][:]                         # numpy structured array
 body = bodies[bodies["id"] == seq.attrs["body_id"].encode()][0]
 assert f.attrs["format"] == "ptnet-dataset" and isinstance(seq.attrs["category"], str)
@@ -420,7 +481,11 @@ print(body["id"].decode(), int(body["sex"]), float(body["height_cm"]), float(bod
       body["role"].decode(), "%.3f" % kpa.astype(np.float64).sum(), seq.attrs["take"])
 )";
   out.clear();
-  ASSERT_EQ(run("/usr/bin/python3 '" + script + "' '" + path + "'", &out), 0) << out;
+  ASSERT_EQ(run("/usr/bin/python3 '" + script + "' '" + path + "' '" + dir.file("kpa.raw") + "'", &out), 0)
+      << out;
+  const std::string bytes = slurp(dir.file("kpa.raw"));  // h5py's floats, bit for bit
+  ASSERT_EQ(bytes.size(), seq.kpa.size() * 4);
+  EXPECT_EQ(std::memcmp(bytes.data(), seq.kpa.data(), bytes.size()), 0);
   char expected[128];
   std::snprintf(expected, sizeof expected, "b2 1 186.0 94.0 original %.3f 1\n", sum);
   EXPECT_EQ(out, expected);

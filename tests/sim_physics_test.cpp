@@ -3,8 +3,11 @@
 // documented left side, determinism.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "ptnet/anthropometry.hpp"
 #include "ptnet/body.hpp"
+#include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
 #include "sim_poses.hpp"
 

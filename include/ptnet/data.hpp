@@ -32,16 +32,17 @@ namespace ptnet {
 inline constexpr const char* kDatasetFormat = "ptnet-dataset";
 inline constexpr int kDatasetVersion = 1;
 
-inline constexpr int kDefaultCompression = 4;  // zlib level of the sequences
+inline constexpr int kDefaultCompression = 1;  // deflate level of the sequences: zero runs only
 
 struct DatasetInfo {
   MatSpec mat;
   double fps = kFps;
   std::string generator;    // "ptnet 0.1.0 simulate"
   std::string config_json = "{}";  // options that produced the file
-  // zlib level of the sequences (shuffle + deflate), 1-9; 0 stores them
-  // uncompressed. 4, the default, keeps ~all of level 9's ratio at a third of
-  // its time; 1 is faster and larger (docs/simulate.md, "Speed").
+  // Deflate level of the sequences (HDF5's deflate filter, no shuffle): 1,
+  // the default, codes only the runs of zeros, several times faster than a
+  // general deflater and as small on sparse pressure; 2-9 are libdeflate's
+  // levels; 0 stores the sequences uncompressed (docs/simulate.md).
   int compression = kDefaultCompression;
 };
 

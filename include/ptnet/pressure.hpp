@@ -52,6 +52,10 @@ inline void zero_below(PressureSequence& s, double kpa) {
     if (v < kpa) v = 0.0f;
 }
 
+// The index of the first NaN or infinite value of kpa[0, n), n if none
+// (a vectorised scan: the writer checks every value it stores).
+std::size_t first_non_finite(const float* kpa, std::size_t n);
+
 // Every input format rejects NaN and infinite readings alike: throws Error
 // "FILE: WHAT: non-finite value (NaN or Inf) in frame T" (T counted from
 // `first_frame`). kpa: [n / cells frames, cells].

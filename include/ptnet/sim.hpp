@@ -164,6 +164,14 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
 PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
                           const MotionPlacement& placement, std::vector<FrameTrace>* trace = nullptr);
 
+// simulate() with a given placement, read by the sensor model once per seed
+// of `seeds` (options.seed is not used): result k is, bit for bit,
+// simulate(motion, body, options with seed = seeds[k], placement), for the
+// cost of one simulation plus the sensor model per seed.
+std::vector<PressureSequence> simulate_reads(const Motion& motion, const Body& body, const SimOptions& options,
+                                             const MotionPlacement& placement,
+                                             const std::vector<std::uint64_t>& seeds);
+
 // Total vertical load (N) per frame, F = m (g + a_z) clamped at 0 (before the
 // contact test): [T], N.
 std::vector<double> vertical_load(const Motion& motion, const Body& body, double com_filter_hz);
@@ -174,14 +182,20 @@ struct SimJob {
   const Body* body = nullptr;
   std::uint64_t seed = 0;          // replaces options.seed for this job
   const MotionPlacement* placement = nullptr;  // null: place_motion(*motion, options)
+  // The same pressure read again by the sensor with each of these seeds (the
+  // noise-floor copies of simulate_dataset), for the cost of the sensor
+  // model alone (simulate_reads); into simulate_many's *rereads.
+  std::vector<std::uint64_t> reread_seeds;
 };
 
 // Runs every job on `threads` threads (0: hardware concurrency); result i is
-// job i, identical whatever the thread count. `progress` gets a count
+// job i, identical whatever the thread count; with `rereads`, (*rereads)[i][k]
+// is job i read with seed reread_seeds[k]. `progress` gets a count
 // {"simulate", done, total, "sequences"} from the worker threads
 // (serialised), if given.
 std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs, const SimOptions& options,
-                                            int threads, const ProgressFn& progress = {});
+                                            int threads, const ProgressFn& progress = {},
+                                            std::vector<std::vector<PressureSequence>>* rereads = nullptr);
 
 // A per-sequence seed from a run seed and the sequence name (FNV-1a + mix).
 std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name);

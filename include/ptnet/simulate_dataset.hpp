@@ -21,8 +21,8 @@
 // Each clip is placed on the mat once, from the source motion (place_motion),
 // and every body's copy gets that placement scaled by retarget_scale, so the
 // copies of one motion differ by body scale, not by where they lie.
-// Sequences on bodies with role "original" (the test bodies) are also
-// simulated with a second sensor seed, floor_seed(seed, name), into
+// Sequences on bodies with role "original" (the test bodies) are also read
+// by the sensor with a second seed, floor_seed(seed, name) (simulate_reads), into
 // /floor/<name>: the noise floor that `ptnet evaluate` reports.
 #pragma once
 
@@ -106,7 +106,7 @@ struct SimulateDatasetOptions {
   int chunk_jobs = 0;             // jobs per chunk; 0: 8 x threads (at least 16)
   bool force = false;             // overwrite an existing output
   bool noise_floor = true;        // /floor/<name> for sequences on original bodies
-  int compression = kDefaultCompression;  // zlib level 0-9 of the sequences (DatasetInfo::compression)
+  int compression = kDefaultCompression;  // deflate level 0-9 of the sequences (DatasetInfo::compression)
   std::string generator = "ptnet simulate";
   std::string config_json;        // "" : built from the options
   // Shard `shard_index` of `shard_count` (ptnet simulate --shard K/N): the

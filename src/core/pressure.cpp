@@ -1,18 +1,38 @@
 // Checks shared by every reader of pressure frames (ptnet/pressure.hpp).
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "ptnet/error.hpp"
 #include "ptnet/pressure.hpp"
 
 namespace ptnet {
 
+std::size_t first_non_finite(const float* kpa, std::size_t n) {
+  constexpr std::size_t kBlock = 1024;
+  constexpr std::uint32_t kExponent = 0x7f800000u;  // all ones: Inf or NaN
+  for (std::size_t b = 0; b < n; b += kBlock) {
+    const std::size_t e = std::min(n, b + kBlock);
+    std::uint32_t bad = 0;
+    for (std::size_t i = b; i < e; ++i) {
+      std::uint32_t bits;
+      std::memcpy(&bits, kpa + i, 4);
+      bad |= std::uint32_t((bits & kExponent) == kExponent);
+    }
+    if (bad)
+      for (std::size_t i = b; i < e; ++i)
+        if (!std::isfinite(kpa[i])) return i;
+  }
+  return n;
+}
+
 void check_finite(const float* kpa, std::size_t n, int cells, const std::string& file, const std::string& what,
                   std::size_t first_frame) {
-  for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(kpa[i]))
-      throw Error::in(file, (what.empty() ? std::string() : what + ": ") +
-                                "non-finite value (NaN or Inf) in frame " +
-                                std::to_string(first_frame + i / std::size_t(cells > 0 ? cells : 1)));
+  const std::size_t i = first_non_finite(kpa, n);
+  if (i < n)
+    throw Error::in(file, (what.empty() ? std::string() : what + ": ") + "non-finite value (NaN or Inf) in frame " +
+                              std::to_string(first_frame + i / std::size_t(cells > 0 ? cells : 1)));
 }
 
 }  // namespace ptnet

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <set>
 #include <vector>
 
+#include "data/deflate_chunks.hpp"
 #include "data/h5_util.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
@@ -77,18 +79,19 @@ void check_frames(const std::string& path, const std::string& where, const Datas
   const int frames = seq.frames();
   if (frames <= 0 || seq.kpa.size() != size_t(frames) * mat.cells())
     throw Error::in(path, where + ": has no frames");
-  for (size_t i = 0; i < seq.kpa.size(); ++i) {
-    if (!std::isfinite(seq.kpa[i])) {
-      size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
-      throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
-                                std::to_string(r) + " col " + std::to_string(c));
-    }
+  const size_t i = first_non_finite(seq.kpa.data(), seq.kpa.size());
+  if (i < seq.kpa.size()) {
+    size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
+    throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
+                              std::to_string(r) + " col " + std::to_string(c));
   }
 }
 
-// float32 [T, rows, cols] in chunks of kChunkFrames frames, shuffle + deflate
-// at `level` (0: neither filter).
-H5::DataSet write_frames(H5::Group& group, const std::string& name, const PressureSequence& seq, int level) {
+// float32 [T, rows, cols] in chunks of kChunkFrames frames, deflated by
+// `deflater` (null: stored uncompressed, no filter). No shuffle filter: on
+// this sparse data it costs time and ratio (docs/simulate.md).
+H5::DataSet write_frames(H5::Group& group, const std::string& name, const PressureSequence& seq,
+                         h5::ChunkDeflater* deflater) {
   const int frames = seq.frames();
   hsize_t dims[3] = {hsize_t(frames), hsize_t(seq.mat.rows), hsize_t(seq.mat.cols)};
   hsize_t chunk[3] = {hsize_t(std::min(frames, kChunkFrames)), dims[1], dims[2]};
@@ -96,12 +99,12 @@ H5::DataSet write_frames(H5::Group& group, const std::string& name, const Pressu
   H5::DSetCreatPropList plist;
   H5Pset_obj_track_times(plist.getId(), false);
   plist.setChunk(3, chunk);
-  if (level > 0) {
-    plist.setShuffle();
-    plist.setDeflate(unsigned(level));
-  }
+  if (deflater) plist.setDeflate(unsigned(deflater->level()));  // recorded; HDF5 does not deflate itself
   H5::DataSet ds = group.createDataSet(name, H5::PredType::IEEE_F32LE, space, plist);
-  ds.write(seq.kpa.data(), H5::PredType::NATIVE_FLOAT);
+  if (deflater)
+    deflater->write(ds, seq.kpa.data(), dims[0], chunk[0], seq.mat.cells());
+  else
+    ds.write(seq.kpa.data(), H5::PredType::NATIVE_FLOAT);
   return ds;
 }
 }  // namespace
@@ -114,6 +117,7 @@ struct DatasetWriter::Impl {
   std::set<std::string> floors;
   H5::H5File file;
   H5::Group sequences, floor;
+  std::unique_ptr<h5::ChunkDeflater> deflater;  // null: compression 0
   bool committed = false;
 
   Impl(const std::string& path, bool force) : out(path, force) {}
@@ -129,7 +133,8 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetInfo& info,
     throw Error::in(path, "mat must have positive rows, cols and pitch");
   if (!(info.fps > 0)) throw Error::in(path, "fps must be positive");
   if (info.compression < 0 || info.compression > 9)
-    throw Error::in(path, "compression must be a zlib level 0-9, found " + std::to_string(info.compression));
+    throw Error::in(path, "compression must be a deflate level 0-9, found " + std::to_string(info.compression));
+  if (info.compression > 0) impl->deflater = std::make_unique<h5::ChunkDeflater>(info.compression);
   for (const auto& b : bodies) {
     check_body(path, b);
     if (!impl->body_ids.insert(b.id).second)
@@ -177,7 +182,7 @@ void DatasetWriter::add(const SequenceMeta& meta, const PressureSequence& seq) {
     throw Error::in(path, where + ": body_id '" + meta.body_id + "' not in the bodies table");
   check_frames(path, where, impl_->info, seq);
   try {
-    H5::DataSet ds = write_frames(impl_->sequences, meta.name, seq, impl_->info.compression);
+    H5::DataSet ds = write_frames(impl_->sequences, meta.name, seq, impl_->deflater.get());
     h5::write_attr(ds, "body_id", meta.body_id);
     h5::write_attr(ds, "motion_id", meta.motion_id);
     h5::write_attr(ds, "performer", meta.performer);
@@ -203,7 +208,7 @@ void DatasetWriter::add_floor(const std::string& name, const PressureSequence& s
                               std::to_string(it->second));
   try {
     if (impl_->floors.empty()) impl_->floor = h5::create_group(impl_->file, "floor");
-    write_frames(impl_->floor, name, seq, impl_->info.compression);
+    write_frames(impl_->floor, name, seq, impl_->deflater.get());
   } catch (const H5::Exception&) {
     throw Error::in(path, where + ": cannot write: " + h5::error_stack_text());
   }

@@ -196,7 +196,8 @@ void write_standin(const std::string& path, const StandinOptions& o, bool force)
   for (const auto& b : plan.bodies) bodies.emplace_back(b);
   std::vector<SimJob> jobs;
   for (std::size_t i = 0; i < plan.motions.size(); ++i)
-    jobs.push_back({&plan.motions[i], &bodies[plan.owner[i]], sequence_seed(o.seed, plan.metas[i].name)});
+    jobs.push_back(
+        {&plan.motions[i], &bodies[plan.owner[i]], sequence_seed(o.seed, plan.metas[i].name), nullptr, {}});
   say("standin: simulating " + std::to_string(jobs.size()) + " clips of " +
       std::to_string(plan.bodies.size()) + " subjects" + (o.mocap.empty() ? "" : " (mocap " + o.mocap + ")"));
   std::vector<PressureSequence> seqs = simulate_many(jobs, sim, o.threads);

@@ -12,6 +12,9 @@
 #include <limits>
 
 #include <Eigen/LU>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "sim_internal.hpp"
 
@@ -31,7 +34,8 @@ Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m, 
       half_w_(0.5 * mat.cols * mat.pitch_m),
       ns_rows_(mat.rows * subsamples),
       ns_cols_(mat.cols * subsamples),
-      zbuf_(std::size_t(ns_rows_) * ns_cols_, kInf) {
+      zbuf_(std::size_t(ns_rows_) * ns_cols_, kInf),
+      hit_(std::size_t(ns_cols_), 0) {
   di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
   zlo_ = kInf;
 }
@@ -105,6 +109,10 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
   const int nu = sole.nu, nv = sole.nv;
   // Along a row of samples, fi, fj and z change by a constant per sample.
   const double dfi = -iu * sy * ds_, dfj = -iv * wy * ds_, dz = -zy * ds_;
+  // Members in locals: the depth stores (float) could alias the float
+  // members, which the loop would then reload per sample.
+  const float reach = reach_;
+  float zlo = zlo_;
   for (int i = i0; i <= i1; ++i) {
     const double dX = half_l_ - (i + 0.5) * ds_ - ox;
     const double dY0 = half_w_ - (j0 + 0.5) * ds_ - oy;
@@ -115,6 +123,20 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
     int lo = 0, hi = j1 - j0;
     clip_affine(fi_a, dfi, fi_lo, fi_hi, lo, hi);
     clip_affine(fj_a, dfj, -0.5, nv - 0.5, lo, hi);
+    // The table's heights are >= 0: where the plane alone is at or above
+    // the reach, no sample can be recorded (kept: one sample either side).
+    if (std::abs(dz) < 1e-12) {
+      if (!(z_a < reach)) continue;
+    } else {
+      const double kz = std::clamp((double(reach) - z_a) / dz, -1e9, 1e9);  // the plane meets the reach
+      if (dz > 0)
+        hi = std::min(hi, int(std::ceil(kz)) + 1);
+      else
+        lo = std::max(lo, int(std::floor(kz)) - 1);
+    }
+    const bool row_on = i >= 0 && i < ns_rows_ && !trace_;  // else: record() for every sample
+    float* const zrow = zbuf_.data() + std::size_t(row_on ? i : 0) * ns_cols_;
+    const int ncols = ns_cols_;
     for (int k = lo; k <= hi; ++k) {
       const double fi = fi_a + dfi * k;
       if (fi < fi_lo || fi >= fi_hi) continue;
@@ -122,20 +144,36 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
       const int ti = int(fi + 0.5), tj = int(fj + 0.5);
       if (ti < 0 || ti >= nu || fj < -0.5 || tj >= nv) continue;
       const float h = table[std::size_t(ti) * nv + tj];
-      if (h >= SoleSurface::kOutside) continue;
-      record(i, j0 + k, float(z_a + dz * k) + h * inv_nz, owner, float(fi) * inv_nu);
+      const float z = float(z_a + dz * k) + h * inv_nz;
+      const int j = j0 + k;
+      if (row_on && j >= 0 && j < ncols) {
+        // record(), inlined and without branches: a height out of reach
+        // (kOutside, off the foot, included) becomes +inf, which changes nothing.
+        const float zr = z < reach ? z : kInf;
+        zlo = std::min(zlo, zr);
+        zrow[j] = std::min(zrow[j], zr);
+      } else if (h < SoleSurface::kOutside) {
+        zlo_ = zlo;
+        record(i, j, z, owner, float(fi) * inv_nu);
+        zlo = zlo_;
+      }
     }
   }
+  zlo_ = zlo;
 }
 
 void Rasteriser::sphere(double cx, double cy, double cz, double r) {
   if (cz - r > reach_) return;
+  const double r2 = r * r;
+  // Only the disc where the lower surface is below the reach can be
+  // recorded (its radius rr, plus a sample: the exact test is per sample).
+  const double above = cz - double(reach_);
+  const double rr = (above > 0 ? std::sqrt(std::max(0.0, r2 - above * above)) : r) + ds_;
   int i0, i1, j0, j1;
-  row_range(cx - r, cx + r, i0, i1);
-  col_range(cy - r, cy + r, j0, j1);
+  row_range(cx - std::min(r, rr), cx + std::min(r, rr), i0, i1);
+  col_range(cy - std::min(r, rr), cy + std::min(r, rr), j0, j1);
   if (i0 > i1 || j0 > j1) return;
   touch(i0, i1, j0, j1);
-  const double r2 = r * r;
   for (int i = i0; i <= i1; ++i) {
     const double dx = half_l_ - (i + 0.5) * ds_ - cx;
     for (int j = j0; j <= j1; ++j) {
@@ -184,13 +222,12 @@ void Rasteriser::clear() {
   off_owner_.clear();
 }
 
-void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
-                            FrameTrace* trace) {
-  std::fill(frame, frame + mat_.cells(), 0.0f);
+RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target,
+                               float* frame, FrameTrace* trace) {
   if (trace) *trace = FrameTrace{};
   if (!(zlo_ < band_) || !(load_n > 0)) {  // airborne, or nothing to carry
     clear();
-    return;
+    return {};
   }
   const bool dirty = di1_ >= di0_ && dj1_ >= dj0_;
   const int r0 = dirty ? di0_ / s_ : 0, r1 = dirty ? di1_ / s_ : -1;
@@ -218,7 +255,16 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
   if (dirty)
     for (int i = di0_; i <= di1_; ++i) {
       const float* z = &zbuf_[std::size_t(i) * ns_cols_];
-      for (int j = dj0_; j <= dj1_; ++j) bin(z[j]);
+      int j = dj0_;
+#if defined(__SSE2__)
+      // Four samples at a time: most are empty (+inf); the others are binned
+      // in the same order as one by one.
+      const __m128 top = _mm_set1_ps(ztop);
+      for (; j + 3 <= dj1_; j += 4)
+        for (int m = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(z + j), top)); m; m &= m - 1)
+          bin(z[j + __builtin_ctz(unsigned(m))]);
+#endif
+      for (; j <= dj1_; ++j) bin(z[j]);
     }
   for (const OffSample& o : off_) bin(o.z);
   const double sample_area = ds_ * ds_;
@@ -243,8 +289,23 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
   };
   for (const OffSample& o : off_)
     if (o.z < lv) moment((lv - o.z) * inv_s2, sample_x(o.i), sample_y(o.j));
-  for (int r = r0; r <= r1; ++r)
+  // hit[j]: some sample of column j of the cell row is below the level (the
+  // members in locals: the byte stores could alias them, and the loops then
+  // do not vectorise).
+  unsigned char* __restrict hit = hit_.data();
+  const int S = s_, jb = c0 * S, je = (c1 + 1) * S;
+  const std::size_t stride = std::size_t(ns_cols_);
+  for (int r = r0; r <= r1; ++r) {
+    const float* __restrict z0 = &zbuf_[std::size_t(r * S) * stride];
+    for (int j = jb; j < je; ++j) hit[j] = z0[j] < lv;
+    for (int a = 1; a < S; ++a) {
+      const float* __restrict za = z0 + std::size_t(a) * stride;
+      for (int j = jb; j < je; ++j) hit[j] |= za[j] < lv;
+    }
     for (int c = c0; c <= c1; ++c) {
+      unsigned char any = 0;
+      for (int b = 0; b < S; ++b) any |= hit[c * S + b];
+      if (!any) continue;  // no penetration: the cell stays 0
       float acc = 0;
       for (int a = 0; a < s_; ++a) {
         const float* z = &zbuf_[std::size_t(r * s_ + a) * ns_cols_ + c * s_];
@@ -255,10 +316,11 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
       frame[r * mat_.cols + c] = acc;
       if (acc > 0) moment(acc, cell_x(r), cell_y(c));
     }
+  }
   if (!(m0 > 0)) {
-    std::fill(frame, frame + mat_.cells(), 0.0f);
+    for (int r = r0; r <= r1; ++r) std::fill(frame + r * mat_.cols + c0, frame + r * mat_.cols + c1 + 1, 0.0f);
     clear();
-    return;
+    return {};
   }
 
   // 3. Tilt towards the target: weights 1 + g . (r - c) move the centre of
@@ -328,6 +390,7 @@ void Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eige
       if (trace->foot[f].force_n > 0) trace->foot[f].cop_u = cop[f] / trace->foot[f].force_n;
   }
   clear();
+  return {r0, r1};
 }
 
 }  // namespace ptnet::detail

@@ -4,6 +4,7 @@
 // read above the threshold are visited (and draw noise).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "sim_internal.hpp"
 
@@ -30,7 +31,7 @@ inline float normalish(std::uint64_t& state) {
 }  // namespace
 
 void apply_sensor(const SensorModel& sensor, const MatSpec& mat, float* frame, float* scratch,
-                  std::uint64_t& rng) {
+                  std::uint64_t& rng, RowSpan pressed) {
   const int R = mat.rows, C = mat.cols;
   const float k = float(sensor.crosstalk);
   const float sat = float(sensor.saturation_kpa), sd = float(sensor.noise_sd_kpa);
@@ -39,15 +40,24 @@ void apply_sensor(const SensorModel& sensor, const MatSpec& mat, float* frame, f
   // the threshold than that reads 0 whatever the draw, and draws nothing.
   const float reach = 3.4642f * sd;
   const bool sparse = thr > reach;
-  // Rows and columns holding any pressure (plus the crosstalk halo).
+  // Rows and columns holding any pressure (plus the crosstalk halo). A row
+  // is tested at once: v != 0 exactly when its bits other than the sign are
+  // not all 0 (NaN included), an OR that vectorises.
   int r0 = R, r1 = -1, c0 = C, c1 = -1;
-  for (int r = 0; r < R; ++r) {
+  for (int r = std::max(0, pressed.first); r <= std::min(R - 1, pressed.last); ++r) {
     const float* row = frame + r * C;
-    for (int c = 0; c < C; ++c)
-      if (row[c] != 0) {
-        r0 = std::min(r0, r), r1 = std::max(r1, r);
-        c0 = std::min(c0, c), c1 = std::max(c1, c);
-      }
+    std::uint32_t any = 0;
+    for (int c = 0; c < C; ++c) {
+      std::uint32_t bits;
+      std::memcpy(&bits, row + c, 4);
+      any |= bits & 0x7fffffffu;
+    }
+    if (!any) continue;
+    int first = 0, last = C - 1;
+    while (row[first] == 0) ++first;
+    while (row[last] == 0) --last;
+    r0 = std::min(r0, r), r1 = r;
+    c0 = std::min(c0, first), c1 = std::max(c1, last);
   }
   if (r1 < 0 && sparse) return;  // an empty frame stays empty
   if (k > 0 && r1 >= 0) {

@@ -42,6 +42,12 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz)
 // Gaussian smoothing of a series with sigma in samples, edges renormalised.
 std::vector<double> gaussian_smooth(const std::vector<double>& x, double sigma);
 
+// Rows [first, last] of a frame that may hold pressure; the others are 0
+// (first > last: none).
+struct RowSpan {
+  int first = 0, last = -1;
+};
+
 // Depth-from-below rasteriser over the S x S sample grid of the mat, and the
 // elastic-foundation load distribution. Reused across frames: no allocation
 // after the first frames.
@@ -56,7 +62,8 @@ class Rasteriser {
 
   // Sinks the body into the foundation until it carries load_n (stiffness in
   // Pa per m of penetration) and writes each cell's pressure (kPa) into
-  // frame[R * C]; all zero when no surface is within the compliance band.
+  // frame[R * C], which must be all zero on entry (only the cells under the
+  // contact are written); all zero when no surface is within the compliance band.
   // The pressures times the cell area sum to load_n over all contact, on and
   // off the mat. Clears the rasterised state. Fills *trace if given (needs
   // rasterise(..., true)).
@@ -64,9 +71,9 @@ class Rasteriser {
   // centre of pressure moves towards it (the penetration of each cell is
   // weighted by max(0, 1 + g . (r - c)), c the penetration centroid), at most
   // 0.6 standard deviations of the contact away from c (so that no contact
-  // cell of a compact footprint is unloaded).
-  void distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
-                  FrameTrace* trace);
+  // cell of a compact footprint is unloaded). Returns the rows it wrote.
+  RowSpan distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
+                     FrameTrace* trace);
 
  private:
   enum Owner : unsigned char { kNone = 0, kLeftSole = 1, kRightSole = 2, kOther = 3 };
@@ -101,6 +108,7 @@ class Rasteriser {
   double ds_, half_l_, half_w_;
   int ns_rows_, ns_cols_;
   std::vector<float> zbuf_;  // [R S, C S] lowest surface height (m), +inf: none
+  std::vector<unsigned char> hit_;  // [C S] distribute's scratch
   int di0_, di1_, dj0_, dj1_;  // dirty sample rectangle
   float zlo_;                  // lowest recorded height this frame
   bool trace_ = false;
@@ -116,8 +124,9 @@ class Rasteriser {
 };
 
 // Applies the sensor model to one frame in place: [R * C] kPa. `scratch` has
-// R * C floats; `rng` is the frame's noise stream state.
+// R * C floats; `rng` is the frame's noise stream state; the rows outside
+// `pressed` are 0 on entry (distribute's span; default: any row).
 void apply_sensor(const SensorModel& sensor, const MatSpec& mat, float* frame, float* scratch,
-                  std::uint64_t& rng);
+                  std::uint64_t& rng, RowSpan pressed = {0, 1 << 30});
 
 }  // namespace ptnet::detail

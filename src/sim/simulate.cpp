@@ -1,4 +1,5 @@
 // simulate(): placement, depth, contact, load and sensor, frame by frame.
+#include <algorithm>
 #include <cmath>
 
 #include "ptnet/error.hpp"
@@ -55,8 +56,15 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
   return simulate(motion, body, options, place_motion(motion, options), trace);
 }
 
-PressureSequence simulate(const Motion& input, const Body& body, const SimOptions& options,
-                          const MotionPlacement& place, std::vector<FrameTrace>* trace) {
+namespace {
+
+// simulate() read by the sensor once per seed: the pressure of each frame is
+// simulated once, copied to every reading, and each reading gets the sensor
+// model with its own noise stream (one state per seed, advanced frame by
+// frame exactly as a single simulate() advances it).
+std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& body, const SimOptions& options,
+                                             const MotionPlacement& place, std::vector<FrameTrace>* trace,
+                                             const std::vector<std::uint64_t>& seeds) {
   check_options(options);
   if (input.size() == 0) throw Error("simulate: motion '" + input.name + "' has no frames");
   if (place.centre.size() != std::size_t(input.size()) || !(place.floor.empty() || place.floor.size() == place.centre.size()))
@@ -66,14 +74,16 @@ PressureSequence simulate(const Motion& input, const Body& body, const SimOption
   const Motion motion = detail::pitch_corrected(input, place.foot_pitch);
   const int T = motion.size();
   const MatSpec& mat = options.mat;
-  PressureSequence seq(mat, T, motion.fps);
+  std::vector<PressureSequence> reads;  // all zero (Rasteriser::distribute writes only the contact)
+  for (std::size_t k = 0; k < seeds.size(); ++k) reads.emplace_back(mat, T, motion.fps);
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
   const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
   const std::vector<double> floor = place.floor.empty() ? std::vector<double>(std::size_t(T), 0.0) : place.floor;
   detail::Rasteriser raster(mat, options.subsamples, options.compliance_m, options.max_sink_m);
   std::vector<float> scratch(mat.cells());
-  std::uint64_t rng = options.seed ^ 0x5bd1e9955bd1e995ULL;
+  std::vector<std::uint64_t> rng;
+  for (std::uint64_t seed : seeds) rng.push_back(seed ^ 0x5bd1e9955bd1e995ULL);
   const double stiffness = options.stiffness_kpa_per_mm * 1e6;  // kPa/mm -> Pa/m
 
   Pose local;
@@ -84,15 +94,32 @@ PressureSequence simulate(const Motion& input, const Body& body, const SimOption
       const Eigen::Vector2d d = pose[j].head<2>() - c;
       local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor[std::size_t(t)]);
     }
-    float* frame = seq.frame(t);
+    float* frame = reads[0].frame(t);
     raster.rasterise(body, pose_body(body, local), trace != nullptr);
     const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
     const Eigen::Vector2d zmp(place.axis.dot(d), place.left.dot(d));
-    raster.distribute(com.load_n[std::size_t(t)], stiffness, options.balance_moments ? &zmp : nullptr, frame,
-                      trace ? &(*trace)[std::size_t(t)] : nullptr);
-    detail::apply_sensor(options.sensor, mat, frame, scratch.data(), rng);
+    const detail::RowSpan pressed =
+        raster.distribute(com.load_n[std::size_t(t)], stiffness, options.balance_moments ? &zmp : nullptr, frame,
+                          trace ? &(*trace)[std::size_t(t)] : nullptr);
+    for (std::size_t k = 1; k < reads.size(); ++k) std::copy(frame, frame + mat.cells(), reads[k].frame(t));
+    for (std::size_t k = 0; k < reads.size(); ++k)
+      detail::apply_sensor(options.sensor, mat, reads[k].frame(t), scratch.data(), rng[k], pressed);
   }
-  return seq;
+  return reads;
+}
+
+}  // namespace
+
+PressureSequence simulate(const Motion& input, const Body& body, const SimOptions& options,
+                          const MotionPlacement& place, std::vector<FrameTrace>* trace) {
+  return std::move(simulate_seeds(input, body, options, place, trace, {options.seed})[0]);
+}
+
+std::vector<PressureSequence> simulate_reads(const Motion& motion, const Body& body, const SimOptions& options,
+                                             const MotionPlacement& placement,
+                                             const std::vector<std::uint64_t>& seeds) {
+  if (seeds.empty()) return {};
+  return simulate_seeds(motion, body, options, placement, nullptr, seeds);
 }
 
 std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name) {

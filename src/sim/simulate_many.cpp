@@ -10,19 +10,31 @@ namespace ptnet {
 
 std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
                                             const SimOptions& options, int threads,
-                                            const ProgressFn& progress) {
+                                            const ProgressFn& progress,
+                                            std::vector<std::vector<PressureSequence>>* rereads) {
   for (const auto& j : jobs)
     if (!j.motion || !j.body) throw Error("simulate_many: a job has no motion or body");
   const int n = int(jobs.size());
   std::vector<PressureSequence> out(static_cast<std::size_t>(n));
+  if (rereads) rereads->assign(static_cast<std::size_t>(n), {});
   std::mutex mutex;  // serialises the progress callback
   int done = 0;
   parallel_for(n, threads, [&](int i) {
     SimOptions o = options;
     o.seed = jobs[std::size_t(i)].seed;
     const SimJob& job = jobs[std::size_t(i)];
-    out[std::size_t(i)] = job.placement ? simulate(*job.motion, *job.body, o, *job.placement)
-                                        : simulate(*job.motion, *job.body, o);
+    if (rereads && !job.reread_seeds.empty()) {
+      std::vector<std::uint64_t> seeds{job.seed};
+      seeds.insert(seeds.end(), job.reread_seeds.begin(), job.reread_seeds.end());
+      std::vector<PressureSequence> reads = simulate_reads(
+          *job.motion, *job.body, o, job.placement ? *job.placement : place_motion(*job.motion, o), seeds);
+      out[std::size_t(i)] = std::move(reads[0]);
+      reads.erase(reads.begin());
+      (*rereads)[std::size_t(i)] = std::move(reads);
+    } else {
+      out[std::size_t(i)] = job.placement ? simulate(*job.motion, *job.body, o, *job.placement)
+                                          : simulate(*job.motion, *job.body, o);
+    }
     std::lock_guard<std::mutex> lock(mutex);
     ++done;
     if (progress) progress(progress_count("simulate", done, n, "sequences"));
