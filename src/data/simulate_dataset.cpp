@@ -10,7 +10,6 @@
 #include <thread>
 #include <nlohmann/json.hpp>
 #if defined(__GLIBC__)
-#include <malloc.h>
 #endif
 
 #include "ptnet/body.hpp"
@@ -43,20 +42,6 @@ std::string default_config(const std::vector<ClipSource>& clips, const std::vect
 }
 
 constexpr std::uint64_t kMaxSequences = 10000000;  // sequences of one dataset
-
-// Every chunk allocates its sequences (MBs each) and frees them once written:
-// glibc would hand those pages back to the kernel and fault them in again
-// for the next chunk (a tenth of the run's CPU in page faults). Keeps freed
-// memory for reuse instead (process-wide; thresholds are only raised).
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-  static std::once_flag once;
-  std::call_once(once, [] {
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest: sequences come from the heap
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);   // and stay there when freed
-  });
-#endif
-}
 
 // ---- the phases of run(), in order
 
@@ -226,7 +211,6 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
                            const std::string& out_path, const SimulateDatasetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const int threads = check_run(clips, bodies, out_path, options);
-  keep_freed_memory();
   std::vector<Body> built;
   built.reserve(bodies.size());
   for (const auto& b : bodies) built.emplace_back(b);  // validates
