@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <array>
 #include <filesystem>
 #include <map>
 
@@ -71,6 +72,20 @@ TEST(Placement, NoFloorWindowMeansTheFloorIsZ0) {
   EXPECT_TRUE(place_motion(m, o).floor.empty());
 }
 
+// The traces of `source`'s copies on a short, heavy body (134 cm, 68 kg) and
+// a tall one (182 cm, 85 kg), each placed per motion (follow), ideal sensor.
+std::array<std::vector<FrameTrace>, 2> traces_on_two_bodies(const Motion& source) {
+  const BodySpec specs[2] = {{"a", Sex::male, 134.2, 67.7, "original"}, {"b", Sex::female, 182.3, 85.4, "original"}};
+  SimOptions o;
+  o.placement = Placement::follow;
+  o.sensor = ideal_sensor();
+  std::array<std::vector<FrameTrace>, 2> out;
+  for (int i = 0; i < 2; ++i)
+    simulate(retarget(source, specs[i].height_cm), Body(specs[i]), o, place_copy(source, specs[i].height_cm, o),
+             &out[std::size_t(i)]);
+  return out;
+}
+
 TEST(Placement, RealClipsTouchTheGroundInTheSameFramesOnEveryBody) {
   // Whether a frame has ground contact (on the mat or off it) must not depend
   // on the body: a short, heavy body (134 cm, 68 kg) and a tall one (182 cm,
@@ -83,22 +98,12 @@ TEST(Placement, RealClipsTouchTheGroundInTheSameFramesOnEveryBody) {
   // tall one airborne throughout.
   const std::string mocap = PTNET_SHARED_MOCAP;
   if (!std::filesystem::exists(mocap + "/clips.csv")) GTEST_SKIP() << "../shared/mocap not found";
-  const BodySpec a{"a", Sex::male, 134.2, 67.7, "original"}, b{"b", Sex::female, 182.3, 85.4, "original"};
-  const Body body_a(a), body_b(b);
-  SimOptions o;
-  o.placement = Placement::follow;
-  o.sensor = ideal_sensor();
   long agree = 0, frames = 0;
   for (const ClipSource& clip : clips_from_files({}, mocap + "/clips.csv", {})) {
-    const Motion source = load_clip(clip, 30);
-    auto contact = [&](const BodySpec& spec, const Body& body) {
-      std::vector<FrameTrace> trace;
-      simulate(retarget(source, spec.height_cm), body, o, place_copy(source, spec.height_cm, o), &trace);
-      std::vector<bool> out;
-      for (const FrameTrace& f : trace) out.push_back(f.load_n > 0);
-      return out;
-    };
-    const std::vector<bool> ca = contact(a, body_a), cb = contact(b, body_b);
+    const auto traces = traces_on_two_bodies(load_clip(clip, 30));
+    std::vector<bool> ca, cb;
+    for (const FrameTrace& f : traces[0]) ca.push_back(f.load_n > 0);
+    for (const FrameTrace& f : traces[1]) cb.push_back(f.load_n > 0);
     ASSERT_EQ(ca.size(), cb.size());
     long here = 0, air_a = 0, air_b = 0;
     for (std::size_t t = 0; t < ca.size(); ++t) here += ca[t] == cb[t], air_a += !ca[t], air_b += !cb[t];
@@ -131,11 +136,6 @@ TEST(Placement, EveryCopyOfARealClipLoadsTheSameFeet) {
   // capsule radii, the absolute contact band and foam stiffness.
   const std::string mocap = PTNET_SHARED_MOCAP;
   if (!std::filesystem::exists(mocap + "/clips.csv")) GTEST_SKIP() << "../shared/mocap not found";
-  const BodySpec a{"a", Sex::male, 134.2, 67.7, "original"}, b{"b", Sex::female, 182.3, 85.4, "original"};
-  const Body body_a(a), body_b(b);
-  SimOptions o;
-  o.placement = Placement::follow;
-  o.sensor = ideal_sensor();
   std::vector<ClipSource> clips = clips_from_files({}, mocap + "/clips.csv", {});
   const std::string corpus = mocap + "-corpus";
   if (std::filesystem::exists(corpus + "/clips.csv"))
@@ -143,15 +143,10 @@ TEST(Placement, EveryCopyOfARealClipLoadsTheSameFeet) {
       if (c.meta.motion_id.find("005_18") != std::string::npos) clips.push_back(c);
   long all_same = 0, all = 0;
   for (const ClipSource& clip : clips) {
-    const Motion source = load_clip(clip, 30);
-    auto feet = [&](const BodySpec& spec, const Body& body) {
-      std::vector<FrameTrace> trace;
-      simulate(retarget(source, spec.height_cm), body, o, place_copy(source, spec.height_cm, o), &trace);
-      std::vector<int> out;
-      for (const FrameTrace& f : trace) out.push_back((f.foot[0].force_n > 50) + 2 * (f.foot[1].force_n > 50));
-      return out;
-    };
-    const std::vector<int> fa = feet(a, body_a), fb = feet(b, body_b);
+    const auto traces = traces_on_two_bodies(load_clip(clip, 30));
+    std::vector<int> fa, fb;  // loaded soles: 1 left, 2 right, 3 both
+    for (const FrameTrace& f : traces[0]) fa.push_back((f.foot[0].force_n > 50) + 2 * (f.foot[1].force_n > 50));
+    for (const FrameTrace& f : traces[1]) fb.push_back((f.foot[0].force_n > 50) + 2 * (f.foot[1].force_n > 50));
     ASSERT_EQ(fa.size(), fb.size());
     long same = 0;
     for (std::size_t t = 0; t < fa.size(); ++t) same += fa[t] == fb[t];
