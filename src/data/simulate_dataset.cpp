@@ -9,8 +9,6 @@
 #include <mutex>
 #include <thread>
 #include <nlohmann/json.hpp>
-#if defined(__GLIBC__)
-#endif
 
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
@@ -176,7 +174,7 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
         floors.get()));
     if (writing.valid()) writing.get();  // the previous chunk is written (or its error thrown)
     // Written (compressed) on one thread while the next chunk is simulated, in
-    // the same order as before: the file's bytes do not change.
+    // sequence order: the same bytes for any thread count.
     writing = std::async(std::launch::async, [&, seqs, floors, j0, j1] {
       for (int j = j0; j < j1; ++j) {
         const PressureSequence& s = (*seqs)[std::size_t(j - j0)];

@@ -1,6 +1,8 @@
 // Many simulations on ptnet::parallel_for; results by job index, so the
 // output does not depend on the number of threads or the scheduling.
+#include <iterator>
 #include <mutex>
+#include <optional>
 
 #include "ptnet/error.hpp"
 #include "core/parallel.hpp"
@@ -23,18 +25,17 @@ std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
     SimOptions o = options;
     o.seed = jobs[std::size_t(i)].seed;
     const SimJob& job = jobs[std::size_t(i)];
-    if (rereads && !job.reread_seeds.empty()) {
-      std::vector<std::uint64_t> seeds{job.seed};
-      seeds.insert(seeds.end(), job.reread_seeds.begin(), job.reread_seeds.end());
-      std::vector<PressureSequence> reads = simulate_reads(
-          *job.motion, *job.body, o, job.placement ? *job.placement : place_motion(*job.motion, o), seeds);
-      out[std::size_t(i)] = std::move(reads[0]);
-      reads.erase(reads.begin());
-      (*rereads)[std::size_t(i)] = std::move(reads);
-    } else {
-      out[std::size_t(i)] = job.placement ? simulate(*job.motion, *job.body, o, *job.placement)
-                                          : simulate(*job.motion, *job.body, o);
-    }
+    // One path: the job's seed first, then its rereads (if asked for).
+    std::vector<std::uint64_t> seeds{job.seed};
+    if (rereads) seeds.insert(seeds.end(), job.reread_seeds.begin(), job.reread_seeds.end());
+    std::optional<MotionPlacement> own;
+    if (!job.placement) own = place_motion(*job.motion, o);
+    const MotionPlacement& place = job.placement ? *job.placement : *own;
+    std::vector<PressureSequence> reads = simulate_reads(*job.motion, *job.body, o, place, seeds);
+    out[std::size_t(i)] = std::move(reads[0]);
+    if (rereads)
+      (*rereads)[std::size_t(i)].assign(std::make_move_iterator(reads.begin() + 1),
+                                        std::make_move_iterator(reads.end()));
     std::lock_guard<std::mutex> lock(mutex);
     ++done;
     if (progress) progress(progress_count("simulate", done, n, "sequences"));
