@@ -1,15 +1,29 @@
 // ptnet: the command-line tool. Thin glue: each subcommand lives in
 // app/cmd_<name>.cpp and calls the library's public headers.
 //
+// Two executables are built from these files (app/CMakeLists.txt):
+//   ptnet        the commands that need no LibTorch (simulate, bodies, info,
+//                render, merge, motions); for any other command line it
+//                runs ptnet-torch with the same arguments (execv).
+//   ptnet-torch  every command, linked with LibTorch.
+// Loading LibTorch's shared libraries costs ~0.5 CPU s at every start; the
+// split keeps that off the commands that do not use it (docs/simulate.md).
+//
 // Exit codes: 0 ok, 1 bad input or runtime error, 2 usage error.
+#if PTNET_WITH_TORCH
 #include <c10/util/Exception.h>
+#endif
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "command.hpp"
 #include "ptnet/error.hpp"
@@ -21,6 +35,46 @@ Globals& globals() {
   return g;
 }
 }  // namespace ptnet::cli
+
+namespace {
+
+// The command line's first argument that is not the global -q/--quiet: the
+// subcommand, an option (--help, --version) or empty.
+std::string first_word(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "-q") != 0 && std::strcmp(argv[i], "--quiet") != 0) return argv[i];
+  return std::string();
+}
+
+bool is_command(const CLI::App& app, const std::string& word) {
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    if (sub->get_name() == word) return true;
+  return false;
+}
+
+#if !PTNET_WITH_TORCH
+// Replaces this process with ptnet-torch (next to this executable) on the
+// same arguments. Returns only on failure, with the exit status.
+int run_torch_executable(int argc, char** argv) {
+  std::string self(4096, '\0');
+  const ssize_t n = ::readlink("/proc/self/exe", self.data(), self.size() - 1);
+  if (n <= 0) {
+    std::cerr << "ptnet: error: /proc/self/exe: cannot read this executable's path (" << std::strerror(errno)
+              << ")\n";
+    return 1;
+  }
+  self.resize(std::size_t(n));
+  const std::string torch_exe = self.substr(0, self.rfind('/') + 1) + "ptnet-torch";
+  std::vector<char*> args(argv, argv + argc);
+  args.push_back(nullptr);
+  ::execv(torch_exe.c_str(), args.data());
+  std::cerr << "ptnet: error: " << torch_exe << ": cannot run it (" << std::strerror(errno)
+            << "); the model commands live there: build it (make build)\n";
+  return 1;
+}
+#endif
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -37,6 +91,16 @@ int main(int argc, char** argv) {
   std::stable_sort(commands.begin(), commands.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [order, setup] : commands) setup(app);
+  const std::string word = first_word(argc, argv);
+#if !PTNET_WITH_TORCH
+  // Not one of this executable's commands (or --help, --version): ptnet-torch
+  // answers, with every command.
+  if (!is_command(app, word)) return run_torch_executable(argc, argv);
+#endif
+  if (!word.empty() && word[0] != '-' && !is_command(app, word)) {
+    std::cerr << "ptnet: error: " << ptnet::escaped(word, 40) << ": not a command (ptnet --help)\n";
+    return 2;
+  }
 
   try {
     app.parse(argc, argv);
@@ -48,9 +112,11 @@ int main(int argc, char** argv) {
   } catch (const ptnet::Error& e) {
     std::cerr << "ptnet: error: " << ptnet::one_line(e.what()) << "\n";
     return 1;
+#if PTNET_WITH_TORCH
   } catch (const c10::Error& e) {
     std::cerr << "ptnet: error: " << ptnet::one_line(e.what_without_backtrace()) << "\n";
     return 1;
+#endif
   } catch (const std::bad_alloc&) {
     std::cerr << "ptnet: error: out of memory\n";
     return 1;

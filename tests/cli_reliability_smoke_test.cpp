@@ -54,7 +54,7 @@ class Reliability : public ::testing::Test {
 }  // namespace
 
 TEST_F(Reliability, UsageErrorsAreOneLineWithStatus2) {
-  expect_usage_error("no-such-command", "subcommand");
+  expect_usage_error("no-such-command", "'no-such-command': not a command");
   expect_usage_error("train --data d.h5 --out m --epochs 0", "--epochs");
   expect_usage_error("train --data d.h5 --out m --threads 100000", "--threads");
   expect_usage_error("train --data d.h5 --out m --threads -1", "--threads");

@@ -134,30 +134,57 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
       else
         lo = std::max(lo, int(std::floor(kz)) - 1);
     }
-    const bool row_on = i >= 0 && i < ns_rows_ && !trace_;  // else: record() for every sample
-    float* const zrow = zbuf_.data() + std::size_t(row_on ? i : 0) * ns_cols_;
-    const int ncols = ns_cols_;
-    for (int k = lo; k <= hi; ++k) {
+    // The samples the exact tests below accept are one interval of k: fi
+    // and fj are monotone in k (in floating point too), and each test is a
+    // threshold on one of them. Narrowed to it from both ends (a sample or
+    // two: the clips above are conservative by one), the loops test nothing
+    // per sample.
+    auto on_table = [&](int k) {
       const double fi = fi_a + dfi * k;
-      if (fi < fi_lo || fi >= fi_hi) continue;
+      if (fi < fi_lo || fi >= fi_hi) return false;
       const double fj = fj_a + dfj * k;
       const int ti = int(fi + 0.5), tj = int(fj + 0.5);
-      if (ti < 0 || ti >= nu || fj < -0.5 || tj >= nv) continue;
-      const float h = table[std::size_t(ti) * nv + tj];
-      const float z = float(z_a + dz * k) + h * inv_nz;
-      const int j = j0 + k;
-      if (row_on && j >= 0 && j < ncols) {
-        // record(), inlined and without branches: a height out of reach
-        // (kOutside, off the foot, included) becomes +inf, which changes nothing.
-        const float zr = z < reach ? z : kInf;
-        zlo = std::min(zlo, zr);
-        zrow[j] = std::min(zrow[j], zr);
-      } else if (h < SoleSurface::kOutside) {
-        zlo_ = zlo;
-        record(i, j, z, owner, float(fi) * inv_nu);
-        zlo = zlo_;
+      return ti >= 0 && ti < nu && fj >= -0.5 && tj < nv;
+    };
+    while (lo <= hi && !on_table(lo)) ++lo;
+    while (hi >= lo && !on_table(hi)) --hi;
+    auto height = [&](int k, double& fi) {
+      fi = fi_a + dfi * k;
+      const double fj = fj_a + dfj * k;
+      return table[std::size_t(int(fi + 0.5)) * nv + std::size_t(int(fj + 0.5))];
+    };
+    // Samples off the mat (or every sample, with a trace): record().
+    auto record_each = [&](int k0, int k1) {
+      for (int k = k0; k <= k1; ++k) {
+        double fi;
+        const float h = height(k, fi);
+        if (h < SoleSurface::kOutside) {
+          zlo_ = zlo;
+          record(i, j0 + k, float(z_a + dz * k) + h * inv_nz, owner, float(fi) * inv_nu);
+          zlo = zlo_;
+        }
       }
+    };
+    const bool row_on = i >= 0 && i < ns_rows_ && !trace_;
+    if (!row_on) {
+      record_each(lo, hi);
+      continue;
     }
+    // Samples on the mat, k in [on_lo, on_hi]: record(), inlined and without
+    // branches; a height out of reach (kOutside, off the foot, included)
+    // becomes +inf, which changes nothing.
+    const int on_lo = std::max(lo, -j0), on_hi = std::min(hi, ns_cols_ - 1 - j0);
+    record_each(lo, std::min(hi, on_lo - 1));
+    float* const zrow = zbuf_.data() + std::size_t(i) * ns_cols_;
+    for (int k = on_lo; k <= on_hi; ++k) {
+      double fi;
+      const float h = height(k, fi);
+      const float z = float(z_a + dz * k) + h * inv_nz;
+      const float zr = z < reach ? z : kInf;
+      zlo = std::min(zlo, zr);
+      zrow[j0 + k] = std::min(zrow[j0 + k], zr);
+    }
+    record_each(std::max(lo, on_hi + 1), hi);
   }
   zlo_ = zlo;
 }
@@ -245,11 +272,19 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
   const float zlo = zlo_, w = max_sink_ / kBins, inv_w = 1.0f / w, ztop = zlo + max_sink_;
   int count[kBins] = {};
   double sum[kBins] = {};
+  // Neighbouring samples mostly fall in one bin: its count and sum are kept
+  // in registers until the bin changes (the same additions in the same order).
+  int cur = 0, cur_n = 0;
+  double cur_s = 0;
   auto bin = [&](float z) {
     if (z < ztop) {
       const int b = std::min(kBins - 1, int((z - zlo) * inv_w));
-      ++count[b];
-      sum[b] += z;
+      if (b != cur) {
+        count[cur] = cur_n, sum[cur] = cur_s;
+        cur = b, cur_n = count[b], cur_s = sum[b];
+      }
+      ++cur_n;
+      cur_s += z;
     }
   };
   if (dirty)
@@ -267,6 +302,7 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
       for (; j <= dj1_; ++j) bin(z[j]);
     }
   for (const OffSample& o : off_) bin(o.z);
+  count[cur] = cur_n, sum[cur] = cur_s;
   const double sample_area = ds_ * ds_;
   const double target_sum = load_n / (stiffness_pa_per_m * sample_area);  // sum of (s - z), m
   double level = ztop, n = 0, s = 0;

@@ -1,0 +1,93 @@
+// The two executables (app/ptnet.cpp): `ptnet` runs the commands that need
+// no LibTorch without loading it, and hands every other command line to
+// `ptnet-torch` beside it; without ptnet-torch those say so in one line.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli_test_util.hpp"
+
+namespace fs = std::filesystem;
+using ptnet::testing_cli::RunResult;
+using ptnet::testing_cli::slurp;
+
+namespace {
+
+class FrontEnd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("ptnet_front_end_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "bodies.csv") << "id,sex,height_cm,weight_kg,role\nf1,female,160,58,retargeted\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `exe args` in dir_ (with `env` before it), capturing its output.
+  RunResult run(const fs::path& exe, const std::string& args, const std::string& env = "") const {
+    const fs::path out = dir_ / ".out", err = dir_ / ".err";
+    const std::string cmd = "cd '" + dir_.string() + "' && " + env + " '" + exe.string() + "' " + args + " >'" +
+                            out.string() + "' 2>'" + err.string() + "'";
+    const int raw = std::system(cmd.c_str());
+    RunResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+  // The shared libraries the dynamic loader maps for `exe` (what ldd lists).
+  std::string libraries(const fs::path& exe) const {
+    const RunResult r = run(exe, "", "LD_TRACE_LOADED_OBJECTS=1");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("libc.so"), std::string::npos) << r.out;
+    return r.out;
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(FrontEnd, PtnetLoadsNoLibTorchAndPtnetTorchDoes) {
+  const fs::path ptnet = PTNET_BINARY, torch_exe = fs::path(PTNET_BINARY).parent_path() / "ptnet-torch";
+  const std::string light = libraries(ptnet), full = libraries(torch_exe);
+  EXPECT_EQ(light.find("libtorch"), std::string::npos) << light;
+  EXPECT_EQ(light.find("libc10"), std::string::npos) << light;
+  EXPECT_NE(full.find("libtorch"), std::string::npos) << full;  // the check can see LibTorch
+}
+
+TEST_F(FrontEnd, EveryCommandAnswersThroughPtnet) {
+  const RunResult help = run(PTNET_BINARY, "--help");
+  EXPECT_EQ(help.status, 0) << help.err;
+  for (const char* command : {"simulate", "bodies", "info", "render", "train", "transfer", "evaluate", "stream"})
+    EXPECT_NE(help.out.find(std::string("\n  ") + command + " "), std::string::npos) << command << "\n" << help.out;
+  const RunResult train = run(PTNET_BINARY, "-q train --help");
+  EXPECT_EQ(train.status, 0) << train.err;
+  EXPECT_NE(train.out.find("--preset"), std::string::npos) << train.out;
+  const RunResult version = run(PTNET_BINARY, "--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.out.rfind("ptnet ", 0), 0u) << version.out;
+  // A model command's usage error comes from ptnet-torch, as one line, status 2.
+  const RunResult usage = run(PTNET_BINARY, "train --epochs 0");
+  EXPECT_EQ(usage.status, 2) << usage.err;
+  EXPECT_EQ(std::count(usage.err.begin(), usage.err.end(), '\n'), 1) << usage.err;
+}
+
+TEST_F(FrontEnd, WithoutPtnetTorchTheModelCommandsSaySoAndTheOthersRun) {
+  const fs::path alone = dir_ / "bin" / "ptnet";
+  fs::create_directories(alone.parent_path());
+  fs::copy_file(PTNET_BINARY, alone);
+  const RunResult bodies = run(alone, "-q bodies --seed 1 --out b.csv");
+  EXPECT_EQ(bodies.status, 0) << bodies.err;
+  EXPECT_TRUE(fs::exists(dir_ / "b.csv"));
+  const RunResult train = run(alone, "train --data d.h5 --out m");
+  EXPECT_EQ(train.status, 1) << train.err;
+  EXPECT_EQ(train.err, "ptnet: error: " + (alone.parent_path() / "ptnet-torch").string() +
+                           ": cannot run it (No such file or directory); the model commands live there: build it "
+                           "(make build)\n");
+  EXPECT_FALSE(fs::exists(dir_ / "m"));
+}
