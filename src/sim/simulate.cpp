@@ -101,7 +101,11 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
     const detail::RowSpan pressed =
         raster.distribute(com.load_n[std::size_t(t)], stiffness, options.balance_moments ? &zmp : nullptr, frame,
                           trace ? &(*trace)[std::size_t(t)] : nullptr);
-    for (std::size_t k = 1; k < reads.size(); ++k) std::copy(frame, frame + mat.cells(), reads[k].frame(t));
+    // The other readings' frames are all zero outside the pressed rows too.
+    const std::size_t first = std::size_t(std::max(0, pressed.first)) * std::size_t(mat.cols);
+    const std::size_t end = std::size_t(std::min(mat.rows, pressed.last + 1)) * std::size_t(mat.cols);
+    for (std::size_t k = 1; k < reads.size() && first < end; ++k)
+      std::copy(frame + first, frame + end, reads[k].frame(t) + first);
     for (std::size_t k = 0; k < reads.size(); ++k)
       detail::apply_sensor(options.sensor, mat, reads[k].frame(t), scratch.data(), rng[k], pressed);
   }
