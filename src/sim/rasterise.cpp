@@ -35,7 +35,11 @@ Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m, 
       ns_rows_(mat.rows * subsamples),
       ns_cols_(mat.cols * subsamples),
       zbuf_(std::size_t(ns_rows_) * ns_cols_, kInf),
-      hit_(std::size_t(ns_cols_), 0) {
+      hit_(std::size_t(ns_cols_), 0),
+      span0_(std::size_t(ns_rows_), ns_cols_),
+      span1_(std::size_t(ns_rows_), -1),
+      cell0_(std::size_t(mat.rows), 0),
+      cell1_(std::size_t(mat.rows), -1) {
   di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
   zlo_ = kInf;
 }
@@ -51,10 +55,12 @@ void Rasteriser::col_range(double y0, double y1, int& lo, int& hi) const {
 }
 
 void Rasteriser::touch(int i0, int i1, int j0, int j1) {
-  di0_ = std::min(di0_, std::max(i0, 0));
-  di1_ = std::max(di1_, std::min(i1, ns_rows_ - 1));
-  dj0_ = std::min(dj0_, std::max(j0, 0));
-  dj1_ = std::max(dj1_, std::min(j1, ns_cols_ - 1));
+  i0 = std::max(i0, 0), i1 = std::min(i1, ns_rows_ - 1);
+  j0 = std::max(j0, 0), j1 = std::min(j1, ns_cols_ - 1);
+  if (i0 > i1 || j0 > j1) return;
+  di0_ = std::min(di0_, i0), di1_ = std::max(di1_, i1);
+  dj0_ = std::min(dj0_, j0), dj1_ = std::max(dj1_, j1);
+  for (int i = i0; i <= i1; ++i) span0_[i] = std::min(span0_[i], j0), span1_[i] = std::max(span1_[i], j1);
 }
 
 namespace {
@@ -91,7 +97,6 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
   row_range(x0, x1, i0, i1);
   col_range(y0, y1, j0, j1);
   if (i0 > i1 || j0 > j1) return;
-  touch(i0, i1, j0, j1);
 
   // Affine maps from the sample position (X, Y) to the plane height z, the
   // table row fi (along u) and column fj (along v).
@@ -148,6 +153,8 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
     };
     while (lo <= hi && !on_table(lo)) ++lo;
     while (hi >= lo && !on_table(hi)) --hi;
+    if (lo > hi) continue;
+    touch(i, i, j0 + lo, j0 + hi);
     auto height = [&](int k, double& fi) {
       fi = fi_a + dfi * k;
       const double fj = fj_a + dfj * k;
@@ -279,9 +286,10 @@ void Rasteriser::rasterise(const Body& body, const PosedBody& posed, bool trace)
 }
 
 void Rasteriser::clear() {
-  if (di1_ >= di0_ && dj1_ >= dj0_) {
-    for (int i = di0_; i <= di1_; ++i)
-      std::fill(&zbuf_[std::size_t(i) * ns_cols_ + dj0_], &zbuf_[std::size_t(i) * ns_cols_ + dj1_] + 1, kInf);
+  for (int i = di0_; i <= di1_; ++i) {
+    if (span0_[i] <= span1_[i])
+      std::fill(&zbuf_[std::size_t(i) * ns_cols_ + span0_[i]], &zbuf_[std::size_t(i) * ns_cols_ + span1_[i]] + 1, kInf);
+    span0_[i] = ns_cols_, span1_[i] = -1;
   }
   di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
   zlo_ = kInf;
@@ -299,7 +307,6 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
   }
   const bool dirty = di1_ >= di0_ && dj1_ >= dj0_;
   const int r0 = dirty ? di0_ / s_ : 0, r1 = dirty ? di1_ / s_ : -1;
-  const int c0 = dirty ? dj0_ / s_ : 0, c1 = dirty ? dj1_ / s_ : -1;
   const double pitch = mat_.pitch_m;
   auto cell_x = [&](int r) { return half_l_ - (r + 0.5) * pitch; };
   auto cell_y = [&](int c) { return half_w_ - (c + 0.5) * pitch; };
@@ -319,19 +326,21 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
       ++count[b];
       sum[b] += z;
     }
-  };  if (dirty)
-    for (int i = di0_; i <= di1_; ++i) {
+  };
+  if (dirty)
+    for (int i = di0_; i <= di1_; ++i) {  // each row's written columns
       const float* z = &zbuf_[std::size_t(i) * ns_cols_];
-      int j = dj0_;
+      int j = span0_[i];
+      const int j1 = span1_[i];
 #if defined(__SSE2__)
       // Four samples at a time: most are empty (+inf); the others are binned
       // in the same order as one by one.
       const __m128 top = _mm_set1_ps(ztop);
-      for (; j + 3 <= dj1_; j += 4)
+      for (; j + 3 <= j1; j += 4)
         for (int m = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(z + j), top)); m; m &= m - 1)
           bin(z[j + __builtin_ctz(unsigned(m))]);
 #endif
-      for (; j <= dj1_; ++j) bin(z[j]);
+      for (; j <= j1; ++j) bin(z[j]);
     }
   for (const OffSample& o : off_) bin(o.z);
   const double sample_area = ds_ * ds_;
@@ -359,17 +368,26 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
   // hit[j]: some sample of column j of the cell row is below the level (the
   // members in locals: the byte stores could alias them, and the loops then
   // do not vectorise).
+  // Cells cell0[r] .. cell1[r] of row r hold every written sample of it;
+  // the others stay 0.
   unsigned char* __restrict hit = hit_.data();
-  const int S = s_, jb = c0 * S, je = (c1 + 1) * S;
+  int* const cell0 = cell0_.data();
+  int* const cell1 = cell1_.data();
+  const int S = s_;
   const std::size_t stride = std::size_t(ns_cols_);
   for (int r = r0; r <= r1; ++r) {
+    int js = ns_cols_, je1 = -1;
+    for (int a = 0; a < S; ++a) js = std::min(js, span0_[r * S + a]), je1 = std::max(je1, span1_[r * S + a]);
+    cell0[r] = js / S, cell1[r] = je1 < 0 ? -1 : je1 / S;
+    if (cell0[r] > cell1[r]) continue;
+    const int jb = cell0[r] * S, je = (cell1[r] + 1) * S;
     const float* __restrict z0 = &zbuf_[std::size_t(r * S) * stride];
     for (int j = jb; j < je; ++j) hit[j] = z0[j] < lv;
     for (int a = 1; a < S; ++a) {
       const float* __restrict za = z0 + std::size_t(a) * stride;
       for (int j = jb; j < je; ++j) hit[j] |= za[j] < lv;
     }
-    for (int c = c0; c <= c1; ++c) {
+    for (int c = cell0[r]; c <= cell1[r]; ++c) {
       unsigned char any = 0;
       for (int b = 0; b < S; ++b) any |= hit[c * S + b];
       if (!any) continue;  // no penetration: the cell stays 0
@@ -385,7 +403,8 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
     }
   }
   if (!(m0 > 0)) {
-    for (int r = r0; r <= r1; ++r) std::fill(frame + r * mat_.cols + c0, frame + r * mat_.cols + c1 + 1, 0.0f);
+    for (int r = r0; r <= r1; ++r)
+      if (cell0[r] <= cell1[r]) std::fill(frame + r * mat_.cols + cell0[r], frame + r * mat_.cols + cell1[r] + 1, 0.0f);
     clear();
     return {};
   }
@@ -413,7 +432,7 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
   for (const OffSample& o : off_)
     if (o.z < lv) total += (lv - o.z) * inv_s2 * weight(sample_x(o.i), sample_y(o.j));
   for (int r = r0; r <= r1; ++r)
-    for (int c = c0; c <= c1; ++c) {
+    for (int c = cell0[r]; c <= cell1[r]; ++c) {
       float& p = frame[r * mat_.cols + c];
       if (p > 0) {
         p = float(p * weight(cell_x(r), cell_y(c)));
@@ -422,7 +441,7 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
     }
   const double scale = total > 0 ? load_n / (total * mat_.cell_area_m2()) / 1000.0 : 0.0;  // kPa per m
   for (int r = r0; r <= r1; ++r)
-    for (int c = c0; c <= c1; ++c) frame[r * mat_.cols + c] = float(frame[r * mat_.cols + c] * scale);
+    for (int c = cell0[r]; c <= cell1[r]; ++c) frame[r * mat_.cols + c] = float(frame[r * mat_.cols + c] * scale);
 
   // 4. Who carries what (trace): per sample force = weighted penetration x
   //    scale x sample area (the weight of its cell, as on the map).

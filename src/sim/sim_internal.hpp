@@ -83,6 +83,7 @@ class Rasteriser {
   // Sample index range [lo, hi] covering mat coordinate range [x0, x1] along rows/cols.
   void row_range(double x0, double x1, int& lo, int& hi) const;
   void col_range(double y0, double y1, int& lo, int& hi) const;
+  // Marks samples [i0, i1] x [j0, j1] (clipped to the mat) as written.
   void touch(int i0, int i1, int j0, int j1);
   // Records depth z at sample (i, j) (which may lie off the mat) for a
   // surface `owner` at sole coordinate u.
@@ -110,6 +111,8 @@ class Rasteriser {
   std::vector<float> zbuf_;  // [R S, C S] lowest surface height (m), +inf: none
   std::vector<unsigned char> hit_;  // [C S] distribute's scratch
   int di0_, di1_, dj0_, dj1_;  // dirty sample rectangle
+  std::vector<int> span0_, span1_;  // [R S] the dirty columns [span0, span1] of each sample row
+  std::vector<int> cell0_, cell1_;  // [R] distribute's scratch: the cells of each row it may write
   float zlo_;                  // lowest recorded height this frame
   bool trace_ = false;
   std::vector<unsigned char> owner_;  // [R S, C S] with trace
