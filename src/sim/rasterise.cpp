@@ -78,9 +78,8 @@ void clip_affine(double c, double a, double lo_v, double hi_v, int& lo, int& hi)
 }
 }  // namespace
 
-void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner) {
-  const Eigen::Vector3d& n = p.up;
-  if (n.z() < 0.2) return;  // sole nearly vertical: its edge is not modelled
+bool Rasteriser::patch_box(const SoleSurface& sole, const SolePatch& p, int& i0, int& i1, int& j0, int& j1) const {
+  if (p.up.z() < 0.2) return false;  // sole nearly vertical: its edge is not modelled
   // Corners of the patch on its plane; the profile only rises above it.
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300, zmin = 1e300;
   for (double u : {p.u_begin, p.u_end}) {
@@ -92,11 +91,38 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
       zmin = std::min(zmin, c.z());
     }
   }
-  if (zmin > reach_) return;
-  int i0, i1, j0, j1;
+  if (zmin > reach_) return false;
   row_range(x0, x1, i0, i1);
   col_range(y0, y1, j0, j1);
-  if (i0 > i1 || j0 > j1) return;
+  return i0 <= i1 && j0 <= j1;
+}
+
+bool Rasteriser::reaches_mat(const Body& body, const PosedBody& posed) const {
+  auto on_mat = [&](int i0, int i1, int j0, int j1) {
+    return i0 <= i1 && j0 <= j1 && i1 >= 0 && i0 < ns_rows_ && j1 >= 0 && j0 < ns_cols_;
+  };
+  int i0, i1, j0, j1;
+  for (const auto* foot : {&posed.left_foot, &posed.right_foot})
+    for (const SolePatch& p : *foot)
+      if (patch_box(body.sole(), p, i0, i1, j0, j1) && on_mat(i0, i1, j0, j1)) return true;
+  const auto& segs = body.segments();
+  for (int s = 0; s < kSegmentCount; ++s) {
+    if (!segs[s].touches_ground) continue;
+    // Every sphere of capsule() lies within the ends' boxes' hull.
+    const Eigen::Vector3d &a = posed.a[s], &b = posed.b[s];
+    const double ra = segs[s].radius_a_m, rb = segs[s].radius_b_m;
+    if (std::min(a.z() - ra, b.z() - rb) > reach_) continue;
+    row_range(std::min(a.x() - ra, b.x() - rb), std::max(a.x() + ra, b.x() + rb), i0, i1);
+    col_range(std::min(a.y() - ra, b.y() - rb), std::max(a.y() + ra, b.y() + rb), j0, j1);
+    if (on_mat(i0, i1, j0, j1)) return true;
+  }
+  return false;
+}
+
+void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner) {
+  int i0, i1, j0, j1;
+  if (!patch_box(sole, p, i0, i1, j0, j1)) return;
+  const Eigen::Vector3d& n = p.up;
 
   // Affine maps from the sample position (X, Y) to the plane height z, the
   // table row fi (along u) and column fj (along v).
@@ -278,6 +304,9 @@ void Rasteriser::rasterise(const Body& body, const PosedBody& posed, bool trace)
     owner_.assign(zbuf_.size(), kNone);
     ubuf_.assign(zbuf_.size(), 0.0f);
   }
+  // Off the mat the frame reads 0 whatever the load: without a trace (which
+  // reports the load off the mat too) there is nothing to rasterise.
+  if (!trace_ && !reaches_mat(body, posed)) return;
   for (const auto& p : posed.left_foot) patch(body.sole(), p, kLeftSole);
   for (const auto& p : posed.right_foot) patch(body.sole(), p, kRightSole);
   const auto& segs = body.segments();
@@ -306,6 +335,10 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
     return {};
   }
   const bool dirty = di1_ >= di0_ && dj1_ >= dj0_;
+  if (!dirty && !trace) {  // nothing on the mat: it reads 0
+    clear();
+    return {};
+  }
   const int r0 = dirty ? di0_ / s_ : 0, r1 = dirty ? di1_ / s_ : -1;
   const double pitch = mat_.pitch_m;
   auto cell_x = [&](int r) { return half_l_ - (r + 0.5) * pitch; };

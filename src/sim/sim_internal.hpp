@@ -78,6 +78,12 @@ class Rasteriser {
  private:
   enum Owner : unsigned char { kNone = 0, kLeftSole = 1, kRightSole = 2, kOther = 3 };
   void patch(const SoleSurface& sole, const SolePatch& p, Owner owner);
+  // The samples [i0, i1] x [j0, j1] patch() may visit (any, on or off the
+  // mat); false when it visits none.
+  bool patch_box(const SoleSurface& sole, const SolePatch& p, int& i0, int& i1, int& j0, int& j1) const;
+  // Whether any surface of the posed body may record a sample on the mat
+  // (conservative: the bounding boxes of its patches and capsules).
+  bool reaches_mat(const Body& body, const PosedBody& posed) const;
   void capsule(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double ra, double rb);
   void sphere(double cx, double cy, double cz, double r);
   // Sample index range [lo, hi] covering mat coordinate range [x0, x1] along rows/cols.
