@@ -3,7 +3,10 @@
 //   BM_SimulateWalk/real        frames/s on one core, a real walking clip of
 //                               ../shared/mocap (005_01, 30 fps) on a 175 cm body
 //   BM_SimulateWalk/procedural  the same on the procedural walk (always runs)
-//   BM_SimulateAllClips         every clip of ../shared/mocap, one core
+//   BM_SimulateAllClips         every clip of ../shared/mocap, one core (fixed
+//                               placement: frames off the mat cost little)
+//   BM_SimulateAllClips/follow  the same with the mat following the body (every
+//                               frame on the mat, as the corpus benchmark)
 //   BM_SimulateMany/threads:2   simulate_many on 2 threads (8 jobs)
 //   BM_SimulateDataset          the whole simulate_dataset path (load, retarget,
 //                               simulate, compress, write) on 2 threads
@@ -74,9 +77,10 @@ void BM_SimulateWalk_procedural(benchmark::State& state) {
 }
 BENCHMARK(BM_SimulateWalk_procedural)->Name("BM_SimulateWalk/procedural")->Unit(benchmark::kMillisecond);
 
-void BM_SimulateAllClips(benchmark::State& state) {
+void BM_SimulateAllClips(benchmark::State& state, ptnet::Placement placement) {
   if (mocap().empty()) return state.SkipWithError("../shared/mocap not found");
   ptnet::SimOptions o;
+  o.placement = placement;
   long frames = 0;
   for (auto _ : state)
     for (const auto& m : mocap()) {
@@ -86,7 +90,8 @@ void BM_SimulateAllClips(benchmark::State& state) {
     }
   state.counters["frames_per_s"] = benchmark::Counter(double(frames), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_SimulateAllClips)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SimulateAllClips, fixed, ptnet::Placement::fixed)->Name("BM_SimulateAllClips")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SimulateAllClips, follow, ptnet::Placement::follow)->Unit(benchmark::kMillisecond);
 
 void BM_SimulateMany(benchmark::State& state) {
   const int threads = int(state.range(0));

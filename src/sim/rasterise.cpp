@@ -64,17 +64,21 @@ void Rasteriser::touch(int i0, int i1, int j0, int j1) {
 }
 
 namespace {
-// Narrows the integer range [lo, hi] of j to where lo_v <= c + a j < hi_v.
-void clip_affine(double c, double a, double lo_v, double hi_v, int& lo, int& hi) {
+// x rounded towards zero, within +/- 1e9.
+inline int truncated(double x) { return int(std::clamp(x, -1e9, 1e9)); }
+
+// Narrows the integer range [lo, hi] of k to cover where lo_v <= c + a k <
+// hi_v (inv_a = 1 / a). Conservative by up to two samples either side; the
+// exact test runs per sample.
+void clip_affine(double c, double a, double inv_a, double lo_v, double hi_v, int& lo, int& hi) {
   if (std::abs(a) < 1e-12) {
     if (!(c >= lo_v && c < hi_v)) hi = lo - 1;
     return;
   }
-  double j0 = (lo_v - c) / a, j1 = (hi_v - c) / a;
-  if (a < 0) std::swap(j0, j1);
-  // Conservative by one sample either side; the exact test runs per sample.
-  lo = std::max(lo, int(std::floor(j0)) - 1);
-  hi = std::min(hi, int(std::ceil(j1)) + 1);
+  double k0 = (lo_v - c) * inv_a, k1 = (hi_v - c) * inv_a;
+  if (a < 0) std::swap(k0, k1);
+  lo = std::max(lo, truncated(k0) - 2);
+  hi = std::min(hi, truncated(k1) + 2);
 }
 }  // namespace
 
@@ -140,6 +144,7 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
   const int nu = sole.nu, nv = sole.nv;
   // Along a row of samples, fi, fj and z change by a constant per sample.
   const double dfi = -iu * sy * ds_, dfj = -iv * wy * ds_, dz = -zy * ds_;
+  const double inv_dfi = 1 / dfi, inv_dfj = 1 / dfj, inv_dz = 1 / dz;  // used where |d| >= 1e-12
   // Members in locals: the depth stores (float) could alias the float
   // members, which the loop would then reload per sample.
   const float reach = reach_;
@@ -152,23 +157,23 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
     const double fj_a = fj0 + iv * (wx * dX + wy * dY0);
     const double z_a = oz + zx * dX + zy * dY0;
     int lo = 0, hi = j1 - j0;
-    clip_affine(fi_a, dfi, fi_lo, fi_hi, lo, hi);
-    clip_affine(fj_a, dfj, -0.5, nv - 0.5, lo, hi);
+    clip_affine(fi_a, dfi, inv_dfi, fi_lo, fi_hi, lo, hi);
+    clip_affine(fj_a, dfj, inv_dfj, -0.5, nv - 0.5, lo, hi);
     // The table's heights are >= 0: where the plane alone is at or above
-    // the reach, no sample can be recorded (kept: one sample either side).
+    // the reach, no sample can be recorded (kept: two samples either side).
     if (std::abs(dz) < 1e-12) {
       if (!(z_a < reach)) continue;
     } else {
-      const double kz = std::clamp((double(reach) - z_a) / dz, -1e9, 1e9);  // the plane meets the reach
+      const int kz = truncated((double(reach) - z_a) * inv_dz);  // the plane meets the reach
       if (dz > 0)
-        hi = std::min(hi, int(std::ceil(kz)) + 1);
+        hi = std::min(hi, kz + 2);
       else
-        lo = std::max(lo, int(std::floor(kz)) - 1);
+        lo = std::max(lo, kz - 2);
     }
     // The samples the exact tests below accept are one interval of k: fi
     // and fj are monotone in k (in floating point too), and each test is a
-    // threshold on one of them. Narrowed to it from both ends (a sample or
-    // two: the clips above are conservative by one), the loops test nothing
+    // threshold on one of them. Narrowed to it from both ends (a few samples:
+    // the clips above are conservative by up to two), the loops test nothing
     // per sample.
     auto on_table = [&](int k) {
       const double fi = fi_a + dfi * k;
@@ -427,8 +432,9 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
       float acc = 0;
       for (int a = 0; a < s_; ++a) {
         const float* z = &zbuf_[std::size_t(r * s_ + a) * ns_cols_ + c * s_];
-        for (int b = 0; b < s_; ++b)
-          if (z[b] < lv) acc += lv - z[b];
+        // max(lv - z, 0): lv - z where z < lv, else +0 (+inf: -inf -> 0),
+        // which leaves acc as it is; without a branch.
+        for (int b = 0; b < s_; ++b) acc += std::max(lv - z[b], 0.0f);
       }
       acc *= inv_s2;
       frame[r * mat_.cols + c] = acc;
