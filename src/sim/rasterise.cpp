@@ -64,12 +64,17 @@ void Rasteriser::touch(int i0, int i1, int j0, int j1) {
 }
 
 namespace {
-// x rounded towards zero, within +/- 1e9.
-inline int truncated(double x) { return int(std::clamp(x, -1e9, 1e9)); }
+// floor(x) within +/- 1e9 (without a call to floor(); NaN: 1e9).
+inline int floored(double x) {
+  if (!(x > -1e9)) x = -1e9;
+  if (!(x < 1e9)) x = 1e9;
+  const int t = int(x);
+  return t - (x < t);
+}
 
 // Narrows the integer range [lo, hi] of k to cover where lo_v <= c + a k <
-// hi_v (inv_a = 1 / a). Conservative by up to two samples either side; the
-// exact test runs per sample.
+// hi_v (inv_a = 1 / a). Conservative by a sample either side; the exact
+// test runs per sample.
 void clip_affine(double c, double a, double inv_a, double lo_v, double hi_v, int& lo, int& hi) {
   if (std::abs(a) < 1e-12) {
     if (!(c >= lo_v && c < hi_v)) hi = lo - 1;
@@ -77,8 +82,8 @@ void clip_affine(double c, double a, double inv_a, double lo_v, double hi_v, int
   }
   double k0 = (lo_v - c) * inv_a, k1 = (hi_v - c) * inv_a;
   if (a < 0) std::swap(k0, k1);
-  lo = std::max(lo, truncated(k0) - 2);
-  hi = std::min(hi, truncated(k1) + 2);
+  lo = std::max(lo, floored(k0) - 1);  // the first k >= k0 is ceil(k0) >= floor(k0)
+  hi = std::min(hi, floored(k1) + 1);  // the last k < k1 (or <=) is <= floor(k1)
 }
 }  // namespace
 
@@ -160,20 +165,20 @@ void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner)
     clip_affine(fi_a, dfi, inv_dfi, fi_lo, fi_hi, lo, hi);
     clip_affine(fj_a, dfj, inv_dfj, -0.5, nv - 0.5, lo, hi);
     // The table's heights are >= 0: where the plane alone is at or above
-    // the reach, no sample can be recorded (kept: two samples either side).
+    // the reach, no sample can be recorded (kept: a sample either side).
     if (std::abs(dz) < 1e-12) {
       if (!(z_a < reach)) continue;
     } else {
-      const int kz = truncated((double(reach) - z_a) * inv_dz);  // the plane meets the reach
+      const int kz = floored((double(reach) - z_a) * inv_dz);  // the plane meets the reach
       if (dz > 0)
-        hi = std::min(hi, kz + 2);
+        hi = std::min(hi, kz + 1);
       else
-        lo = std::max(lo, kz - 2);
+        lo = std::max(lo, kz);
     }
     // The samples the exact tests below accept are one interval of k: fi
     // and fj are monotone in k (in floating point too), and each test is a
-    // threshold on one of them. Narrowed to it from both ends (a few samples:
-    // the clips above are conservative by up to two), the loops test nothing
+    // threshold on one of them. Narrowed to it from both ends (a sample or
+    // two: the clips above are conservative by one), the loops test nothing
     // per sample.
     auto on_table = [&](int k) {
       const double fi = fi_a + dfi * k;
