@@ -13,7 +13,6 @@
 
 namespace fs = std::filesystem;
 using ptnet::testing_cli::RunResult;
-using ptnet::testing_cli::slurp;
 
 namespace {
 
@@ -27,17 +26,9 @@ class FrontEnd : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  // Runs `exe args` in dir_ (with `env` before it), capturing its output.
+  // Runs `env exe args` in dir_.
   RunResult run(const fs::path& exe, const std::string& args, const std::string& env = "") const {
-    const fs::path out = dir_ / ".out", err = dir_ / ".err";
-    const std::string cmd = "cd '" + dir_.string() + "' && " + env + " '" + exe.string() + "' " + args + " >'" +
-                            out.string() + "' 2>'" + err.string() + "'";
-    const int raw = std::system(cmd.c_str());
-    RunResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
+    return ptnet::testing_cli::run_program(exe, args, dir_ / ".run", dir_, env);
   }
   // The shared libraries the dynamic loader maps for `exe` (what ldd lists).
   std::string libraries(const fs::path& exe) const {

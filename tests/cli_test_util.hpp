@@ -24,13 +24,15 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
-// Runs `ptnet ARGS` (in folder `cwd` if given), capturing its output through
-// two scratch files `scratch`.out / `scratch`.err, removed afterwards.
-inline RunResult run_ptnet(const std::string& args, const std::filesystem::path& scratch,
-                           const std::filesystem::path& cwd = {}) {
+// Runs `ENV EXE ARGS` (in folder `cwd` if given; `env`: variable
+// assignments or empty), capturing its output through two scratch files
+// `scratch`.out / `scratch`.err, removed afterwards.
+inline RunResult run_program(const std::filesystem::path& exe, const std::string& args,
+                             const std::filesystem::path& scratch, const std::filesystem::path& cwd = {},
+                             const std::string& env = "") {
   const std::filesystem::path out = scratch.string() + ".out", err = scratch.string() + ".err";
   const std::string cd = cwd.empty() ? "" : "cd '" + cwd.string() + "' && ";
-  const std::string cmd = cd + "'" + std::string(PTNET_BINARY) + "' " + args + " >'" + out.string() + "' 2>'" +
+  const std::string cmd = cd + env + " '" + exe.string() + "' " + args + " >'" + out.string() + "' 2>'" +
                           err.string() + "'";
   const int raw = std::system(cmd.c_str());
   RunResult r;
@@ -40,6 +42,12 @@ inline RunResult run_ptnet(const std::string& args, const std::filesystem::path&
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+// Runs `ptnet ARGS` (PTNET_BINARY), as run_program.
+inline RunResult run_ptnet(const std::string& args, const std::filesystem::path& scratch,
+                           const std::filesystem::path& cwd = {}) {
+  return run_program(PTNET_BINARY, args, scratch, cwd);
 }
 
 }  // namespace ptnet::testing_cli

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 
 #include "ptnet/anthropometry.hpp"
@@ -299,6 +300,34 @@ TEST(SimWalking, RealClipsTallerBodyLongerFootprints) {
   EXPECT_GT(mb, ma);
   EXPECT_NEAR(ma / (0.152 * 1.60), 0.9, 0.25);
   EXPECT_NEAR(mb / (0.152 * 1.90), 0.9, 0.25);
+}
+
+// Frames with the body on the ground beside the mat read 0. The simulator
+// takes shortcuts there (no rasterising when no surface can reach the mat)
+// and on the mat (four samples at a time); with a trace it takes none, so
+// the two must agree bit for bit. The mat is under the walk for its first
+// half and 0.8-2.3 m beside it (moving away) for the second.
+TEST(SimWalking, OffTheMatFramesReadZeroAndTheShortcutsChangeNothing) {
+  const Motion m = procedural_walk(1, 12, kBody.height_cm);
+  const Body body(kBody);
+  const SimOptions o;
+  MotionPlacement place = place_motion(m, o);
+  const int T = m.size();
+  for (int t = T / 2; t < T; ++t) place.centre[t] += place.left * (0.8 + 1.5 * (t - T / 2) / double(T));
+  std::vector<FrameTrace> trace;
+  const PressureSequence fast = simulate(m, body, o, place, nullptr), full = simulate(m, body, o, place, &trace);
+  ASSERT_EQ(fast.kpa.size(), full.kpa.size());
+  EXPECT_EQ(0, std::memcmp(fast.kpa.data(), full.kpa.data(), fast.kpa.size() * sizeof(float)));
+  int off = 0, on = 0;
+  for (int t = 0; t < fast.frames(); ++t) {
+    const float* f = fast.frame(t);
+    const bool zero = std::all_of(f, f + fast.mat.cells(), [](float v) { return v == 0; });
+    const double carried = trace[t].foot[0].force_n + trace[t].foot[1].force_n + trace[t].other_n;
+    if (zero && carried > 0.5 * kBody.weight_kg * kG) ++off;
+    if (!zero) ++on;
+  }
+  EXPECT_GT(off, T / 3) << "the body stands beside the mat";
+  EXPECT_GT(on, T / 3) << "and on it";
 }
 
 }  // namespace
