@@ -40,7 +40,7 @@ Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m, 
       span1_(std::size_t(ns_rows_), -1),
       cell0_(std::size_t(mat.rows), 0),
       cell1_(std::size_t(mat.rows), -1) {
-  di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
+  di0_ = ns_rows_, di1_ = -1;
   zlo_ = kInf;
 }
 
@@ -59,7 +59,6 @@ void Rasteriser::touch(int i0, int i1, int j0, int j1) {
   j0 = std::max(j0, 0), j1 = std::min(j1, ns_cols_ - 1);
   if (i0 > i1 || j0 > j1) return;
   di0_ = std::min(di0_, i0), di1_ = std::max(di1_, i1);
-  dj0_ = std::min(dj0_, j0), dj1_ = std::max(dj1_, j1);
   for (int i = i0; i <= i1; ++i) span0_[i] = std::min(span0_[i], j0), span1_[i] = std::max(span1_[i], j1);
 }
 
@@ -330,7 +329,7 @@ void Rasteriser::clear() {
       std::fill(&zbuf_[std::size_t(i) * ns_cols_ + span0_[i]], &zbuf_[std::size_t(i) * ns_cols_ + span1_[i]] + 1, kInf);
     span0_[i] = ns_cols_, span1_[i] = -1;
   }
-  di0_ = ns_rows_, di1_ = -1, dj0_ = ns_cols_, dj1_ = -1;
+  di0_ = ns_rows_, di1_ = -1;
   zlo_ = kInf;
   off_.clear();
   off_u_.clear();
@@ -344,7 +343,7 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
     clear();
     return {};
   }
-  const bool dirty = di1_ >= di0_ && dj1_ >= dj0_;
+  const bool dirty = di1_ >= di0_;  // some sample on the mat was written
   if (!dirty && !trace) {  // nothing on the mat: it reads 0
     clear();
     return {};
@@ -370,21 +369,20 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
       sum[b] += z;
     }
   };
-  if (dirty)
-    for (int i = di0_; i <= di1_; ++i) {  // each row's written columns
-      const float* z = &zbuf_[std::size_t(i) * ns_cols_];
-      int j = span0_[i];
-      const int j1 = span1_[i];
+  for (int i = di0_; i <= di1_; ++i) {  // each row's written columns
+    const float* z = &zbuf_[std::size_t(i) * ns_cols_];
+    int j = span0_[i];
+    const int j1 = span1_[i];
 #if defined(__SSE2__)
-      // Four samples at a time: most are empty (+inf); the others are binned
-      // in the same order as one by one.
-      const __m128 top = _mm_set1_ps(ztop);
-      for (; j + 3 <= j1; j += 4)
-        for (int m = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(z + j), top)); m; m &= m - 1)
-          bin(z[j + __builtin_ctz(unsigned(m))]);
+    // Four samples at a time: most are empty (+inf); the others are binned
+    // in the same order as one by one.
+    const __m128 top = _mm_set1_ps(ztop);
+    for (; j + 3 <= j1; j += 4)
+      for (int m = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(z + j), top)); m; m &= m - 1)
+        bin(z[j + __builtin_ctz(unsigned(m))]);
 #endif
-      for (; j <= j1; ++j) bin(z[j]);
-    }
+    for (; j <= j1; ++j) bin(z[j]);
+  }
   for (const OffSample& o : off_) bin(o.z);
   const double sample_area = ds_ * ds_;
   const double target_sum = load_n / (stiffness_pa_per_m * sample_area);  // sum of (s - z), m
@@ -508,12 +506,11 @@ RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const E
         trace->other_n += f;
       }
     };
-    if (dirty)
-      for (int i = di0_; i <= di1_; ++i)
-        for (int j = dj0_; j <= dj1_; ++j) {
-          const std::size_t k = std::size_t(i) * ns_cols_ + j;
-          add(owner_[k], zbuf_[k], ubuf_[k], weight(cell_x(i / s_), cell_y(j / s_)));
-        }
+    for (int i = di0_; i <= di1_; ++i)
+      for (int j = span0_[i]; j <= span1_[i]; ++j) {
+        const std::size_t k = std::size_t(i) * ns_cols_ + j;
+        add(owner_[k], zbuf_[k], ubuf_[k], weight(cell_x(i / s_), cell_y(j / s_)));
+      }
     for (std::size_t k = 0; k < off_.size(); ++k)
       add(off_owner_[k], off_[k].z, off_u_[k], weight(sample_x(off_[k].i), sample_y(off_[k].j)));
     for (int f = 0; f < 2; ++f)

@@ -116,8 +116,8 @@ class Rasteriser {
   int ns_rows_, ns_cols_;
   std::vector<float> zbuf_;  // [R S, C S] lowest surface height (m), +inf: none
   std::vector<unsigned char> hit_;  // [C S] distribute's scratch
-  int di0_, di1_, dj0_, dj1_;  // dirty sample rectangle
-  std::vector<int> span0_, span1_;  // [R S] the dirty columns [span0, span1] of each sample row
+  int di0_, di1_;                   // the sample rows written this frame (di0_ > di1_: none)
+  std::vector<int> span0_, span1_;  // [R S] the columns [span0, span1] written in each sample row
   std::vector<int> cell0_, cell1_;  // [R] distribute's scratch: the cells of each row it may write
   float zlo_;                  // lowest recorded height this frame
   bool trace_ = false;
