@@ -38,11 +38,11 @@ Globals& globals() {
 
 namespace {
 
-// The command line's first argument that is not the global -q/--quiet: the
-// subcommand, an option (--help, --version) or empty.
-std::string first_word(int argc, char** argv) {
+// The command line's first argument that is not the global flag `quiet`
+// (-q, --quiet): the subcommand, an option (--help, --version) or empty.
+std::string first_word(const CLI::Option& quiet, int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
-    if (std::strcmp(argv[i], "-q") != 0 && std::strcmp(argv[i], "--quiet") != 0) return argv[i];
+    if (!quiet.check_name(argv[i])) return argv[i];
   return std::string();
 }
 
@@ -84,14 +84,14 @@ int main(int argc, char** argv) {
       "ptnet"};
   app.set_version_flag("--version", std::string("ptnet ") + PTNET_VERSION);
   app.require_subcommand(1);
-  app.add_flag("-q,--quiet", ptnet::cli::globals().quiet, "No progress messages on stderr");
+  const CLI::Option* quiet = app.add_flag("-q,--quiet", ptnet::cli::globals().quiet, "No progress messages on stderr");
   app.fallthrough();
 
   auto commands = ptnet::cli::registry();
   std::stable_sort(commands.begin(), commands.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [order, setup] : commands) setup(app);
-  const std::string word = first_word(argc, argv);
+  const std::string word = first_word(*quiet, argc, argv);
 #if !PTNET_WITH_TORCH
   // Not one of this executable's commands (or --help, --version): ptnet-torch
   // answers, with every command.
