@@ -223,19 +223,19 @@ def _body(b):
     return int(sex), float(h), float(w)
 
 
-def attributes(cfg, body):
-    """float32 [A]: sex, z-scored height, z-scored weight (normalisation of config.json)."""
+def attributes(cfg, body, dtype=np.float32):
+    """[A] (float32 unless `dtype`): sex, z-scored height, z-scored weight (normalisation of config.json)."""
     n = cfg["normalisation"]
     sex, h, w = _body(body)
     return np.array([1.0 if sex == 1 else 0.0, (h - n["height_mean_cm"]) / n["height_std_cm"],
-                     (w - n["weight_mean_kg"]) / n["weight_std_kg"]], dtype=np.float32)
+                     (w - n["weight_mean_kg"]) / n["weight_std_kg"]], dtype=dtype)
 
 
-def zoom_about_centre(pressure, scale, gain):
-    """float32 [T,H,W]: each frame zoomed by `scale` about the mat centre
-    (bilinear in cell-centre coordinates, outside = 0), times `gain`
+def zoom_about_centre(pressure, scale, gain, dtype=np.float32):
+    """[T,H,W] (float32 unless `dtype`): each frame zoomed by `scale` about the
+    mat centre (bilinear in cell-centre coordinates, outside = 0), times `gain`
     (src/core/zoom.cpp)."""
-    x = np.asarray(pressure, dtype=np.float32)
+    x = np.asarray(pressure, dtype=dtype)
     _, rows, cols = x.shape
 
     def taps(n):
@@ -243,8 +243,8 @@ def zoom_about_centre(pressure, scale, gain):
         pos = c + (np.arange(n) - c) / scale
         i0 = np.floor(pos).astype(np.int64)
         f = pos - i0
-        w0 = np.where((i0 >= 0) & (i0 < n), 1 - f, 0).astype(np.float32)
-        w1 = np.where((i0 + 1 >= 0) & (i0 + 1 < n), f, 0).astype(np.float32)
+        w0 = np.where((i0 >= 0) & (i0 < n), 1 - f, 0).astype(dtype)
+        w1 = np.where((i0 + 1 >= 0) & (i0 + 1 < n), f, 0).astype(dtype)
         return np.clip(i0, 0, n - 1), np.clip(i0 + 1, 0, n - 1), w0, w1
 
     r0, r1, a0, a1 = taps(rows)
@@ -253,7 +253,17 @@ def zoom_about_centre(pressure, scale, gain):
     for ri, ra in ((r0, a0), (r1, a1)):
         for ci, cb in ((c0, b0), (c1, b1)):
             v += (ra[:, None] * cb[None, :]) * x[:, ri][:, :, ci]
-    return np.float32(gain) * v
+    return x.dtype.type(gain) * v
+
+
+def window_starts(frames, window, stride):
+    """Where Transfer::run's windows start: every `stride` frames (at most the
+    window), plus one ending at the last frame."""
+    stride = min(stride, window)
+    starts = list(range(0, frames - window + 1, stride))
+    if starts[-1] != frames - window:
+        starts.append(frames - window)
+    return starts
 
 
 def transfer(net, cfg, pressure, source, target, stride=5, raw=False, batch=64):
@@ -270,10 +280,7 @@ def transfer(net, cfg, pressure, source, target, stride=5, raw=False, batch=64):
         (_, sh, sw), (_, th, tw) = _body(source), _body(target)
         s = th / sh
         x = zoom_about_centre(x, s, tw / sw / (s * s))
-    stride = min(stride, k)
-    starts = list(range(0, t - k + 1, stride))
-    if starts[-1] != t - k:
-        starts.append(t - k)
+    starts = window_starts(t, k, stride)
     scale = n["pressure_scale_kpa"]
     inp = torch.from_numpy(x) * float(np.float32(1.0 / scale))                 # [T,H,W] normalised
     total = torch.zeros(x.shape, dtype=torch.float32)

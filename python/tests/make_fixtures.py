@@ -3,10 +3,11 @@ dataset and one tiny trained model per architecture in $PTNET_TEST_TMP/fixtures.
 import os
 import shutil
 
-from common import FIXTURES, cli
+from common import FIXTURE_SEED, FIXTURES, cli
 
 TRAIN = {"--epochs": 1, "--samples-per-epoch": 48, "--val-samples": 16, "--channels": "4,8,8", "--hidden": 16,
-         "--latent": 16, "--threads": 1, "--batch": 16, "--micro-batch": 16}
+         "--latent": 16, "--threads": 1, "--batch": 16, "--micro-batch": 16,
+         "--seed": FIXTURE_SEED}
 MODELS = {
     # contact head, zoom alignment, window 1; trained long enough that its
     # contact head predicts contact (8 s)

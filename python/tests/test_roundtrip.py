@@ -1,7 +1,10 @@
 """PyTorch -> ptnet: weights changed in PyTorch, saved with
 ptnet_torch.save_state_dict, become a ptnet model folder (ptnet
 import-weights) that transfers as the PyTorch module does; exporting that
-folder gives the same state dict back."""
+folder gives the same state dict back. Outputs are compared with the
+float64 evaluation within the tolerance error_bound derives (rounding, and the
+near-ties of max pooling the perturbed weights create: their module
+docstring)."""
 import json
 import os
 import unittest
@@ -9,9 +12,8 @@ import unittest
 import numpy as np
 
 import ptnet
-from common import MODELS, cli, cli_error, fixture, torch_or_skip, workdir
-
-TOL = 1e-4  # normalised pressure
+from common import MODELS, PERTURB_SEED, cli, cli_error, fixture, torch_or_skip, workdir
+from error_bound import check_within, transfer_bound
 
 
 class RoundTripTest(unittest.TestCase):
@@ -26,7 +28,7 @@ class RoundTripTest(unittest.TestCase):
             cls.seq = f["sequences"]["p1_walking_t1__of01"][...]
         cls.source, cls.target = ("female", 177.2, 66.6), ("male", 160.0, 55.0)
         cls.nets = {}
-        torch.manual_seed(0)
+        torch.manual_seed(PERTURB_SEED)
         for model in MODELS:
             exported = os.path.join(cls.dir, model + "_exported.pt")
             cli("export", "--model", fixture(model), "--out", exported, "--force")
@@ -49,8 +51,10 @@ class RoundTripTest(unittest.TestCase):
                 ours = ptnet.Transfer(os.path.join(self.dir, model)).run(self.seq, source=self.source,
                                                                        target=self.target)
                 theirs = self.pt.transfer(net, cfg, self.seq, self.source, self.target)
-                diff = np.abs(theirs - ours).max() / cfg["normalisation"]["pressure_scale_kpa"]
-                self.assertLessEqual(diff, TOL, f"{model}: max |difference| {diff} (normalised)")
+                ref, tol = transfer_bound(net, cfg, self.seq, self.source, self.target)
+                scale = cfg["normalisation"]["pressure_scale_kpa"]
+                check_within(self, f"{model}: ptnet", ours, ref, tol, scale)
+                check_within(self, f"{model}: PyTorch", theirs, ref, tol, scale)
                 before = ptnet.Transfer(fixture(model)).run(self.seq, source=self.source, target=self.target)
                 self.assertFalse(np.array_equal(before, ours), "the tuned weights changed nothing")
 
