@@ -2,15 +2,17 @@
 #   make demo   install what is missing, build, run the whole pipeline on the
 #               embedded procedural motions (no external data)
 #   make test   install what is missing, build, run every test
-# Other targets: build, bench, asan (sanitizer build + tests), fuzz (libFuzzer
-# harnesses with ASan + UBSan in build-fuzz/, clang), clean.
+# Other targets: build, install (PREFIX=/usr/local), package (the .deb in
+# build/), bench, asan (sanitizer build + tests), fuzz (libFuzzer harnesses
+# with ASan + UBSan in build-fuzz/, clang), clean.
 
 BUILD    ?= build
 JOBS     ?= $(shell nproc)
 CMAKE_FLAGS ?=
 DEMO_OUT ?= demo
+PREFIX   ?= /usr/local
 
-.PHONY: deps build demo test bench asan fuzz clean
+.PHONY: deps build demo test install package bench asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -21,11 +23,21 @@ $(BUILD)/CMakeCache.txt: | deps
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# Only what the demo runs (ptnet and ptnet-torch), not the tests and benchmarks.
+demo: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target ptnet
 	./$(BUILD)/ptnet demo --out $(DEMO_OUT) --force
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+install: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target installables
+	cmake --install $(BUILD) --prefix $(PREFIX)
+
+package: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target installables
+	cd $(BUILD) && cpack
 
 bench: build
 	./scripts/run-benchmarks.sh $(BUILD)

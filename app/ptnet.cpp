@@ -5,7 +5,8 @@
 //   ptnet        the commands that need no LibTorch (simulate, bodies, info,
 //                render, merge, motions); for any other command line it
 //                runs ptnet-torch with the same arguments (execv).
-//   ptnet-torch  every command, linked with LibTorch.
+//   ptnet-torch  every command, linked with LibTorch: beside ptnet in the
+//                build folder, in libexec/ptnet/ when installed.
 // Loading LibTorch's shared libraries costs ~0.5 CPU s at every start; the
 // split keeps that off the commands that do not use it (docs/simulate.md).
 //
@@ -20,6 +21,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <string>
@@ -53,23 +55,30 @@ bool is_command(const CLI::App& app, const std::string& word) {
 }
 
 #if !PTNET_WITH_TORCH
-// Replaces this process with ptnet-torch (next to this executable) on the
-// same arguments. Returns only on failure, with the exit status.
+// Replaces this process with ptnet-torch on the same arguments: the one
+// beside this executable (the build folder) or, installed, the one at
+// PTNET_TORCH_FROM_BINDIR from this executable's folder (bin/ ->
+// libexec/ptnet/, cmake/install.cmake). Returns only on failure, with the
+// exit status.
 int run_torch_executable(int argc, char** argv) {
-  std::string self(4096, '\0');
-  const ssize_t n = ::readlink("/proc/self/exe", self.data(), self.size() - 1);
-  if (n <= 0) {
-    std::cerr << "ptnet: error: /proc/self/exe: cannot read this executable's path (" << std::strerror(errno)
-              << ")\n";
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) {
+    std::cerr << "ptnet: error: /proc/self/exe: cannot read this executable's path (" << ec.message() << ")\n";
     return 1;
   }
-  self.resize(std::size_t(n));
-  const std::string torch_exe = self.substr(0, self.rfind('/') + 1) + "ptnet-torch";
+  const fs::path beside = self.parent_path() / "ptnet-torch";
+  const fs::path installed = (self.parent_path() / PTNET_TORCH_FROM_BINDIR).lexically_normal();
+  const fs::path& torch_exe = fs::exists(beside, ec) || !fs::exists(installed, ec) ? beside : installed;
   std::vector<char*> args(argv, argv + argc);
   args.push_back(nullptr);
   ::execv(torch_exe.c_str(), args.data());
-  std::cerr << "ptnet: error: " << torch_exe << ": cannot run it (" << std::strerror(errno)
-            << "); the model commands live there: build it (make build)\n";
+  if (errno == ENOENT)
+    std::cerr << "ptnet: error: ptnet-torch: found neither " << beside.string() << " nor " << installed.string()
+              << "; the model commands live there: build it (make build) or reinstall ptnet\n";
+  else
+    std::cerr << "ptnet: error: " << torch_exe.string() << ": cannot run it (" << std::strerror(errno) << ")\n";
   return 1;
 }
 #endif

@@ -16,10 +16,9 @@ function(ptnet_stage name)
   target_include_directories(ptnet_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include
                                            PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_compile_options(ptnet_${name} PRIVATE ${PTNET_WARNINGS})
-  if(PTNET_PYTHON)
-    # The Python module (a shared object) links the stages: position-independent code.
-    set_target_properties(ptnet_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
-  endif()
+  # The shared library libptnet.so (cmake/install.cmake) and the Python module
+  # are made of the stages' objects: position-independent code.
+  set_target_properties(ptnet_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   target_compile_definitions(ptnet_${name} PUBLIC PTNET_VERSION="${PROJECT_VERSION}")
   target_link_libraries(ptnet_${name} PUBLIC Eigen3::Eigen nlohmann_json::nlohmann_json Threads::Threads)
   foreach(dep ${S_DEPENDS})

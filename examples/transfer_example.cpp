@@ -1,6 +1,9 @@
 // transfer_example: use the ptnet library from another program.
 //
-//   build/examples/transfer_example model/ walk.npy out.npy
+//   build-examples/transfer_example model/ walk.npy out.npy
+//
+// Built against the installed package (examples/CMakeLists.txt:
+// find_package(ptnet), ptnet::ptnet).
 //
 // Loads a trained model folder, reads a recorded [T, 80, 28] float32 kPa
 // sequence of a 165 cm / 60 kg woman, transfers it to a 185 cm / 95 kg man

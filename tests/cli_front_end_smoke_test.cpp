@@ -1,6 +1,7 @@
 // The two executables (app/ptnet.cpp): `ptnet` runs the commands that need
 // no LibTorch without loading it, and hands every other command line to
-// `ptnet-torch` beside it; without ptnet-torch those say so in one line.
+// `ptnet-torch` beside it (or, installed, in libexec/ptnet/); without
+// ptnet-torch those say so in one line.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -77,8 +78,21 @@ TEST_F(FrontEnd, WithoutPtnetTorchTheModelCommandsSaySoAndTheOthersRun) {
   EXPECT_TRUE(fs::exists(dir_ / "b.csv"));
   const RunResult train = run(alone, "train --data d.h5 --out m");
   EXPECT_EQ(train.status, 1) << train.err;
-  EXPECT_EQ(train.err, "ptnet: error: " + (alone.parent_path() / "ptnet-torch").string() +
-                           ": cannot run it (No such file or directory); the model commands live there: build it "
-                           "(make build)\n");
+  EXPECT_EQ(train.err, "ptnet: error: ptnet-torch: found neither " + (dir_ / "bin" / "ptnet-torch").string() +
+                           " nor " + (dir_ / "libexec" / "ptnet" / "ptnet-torch").string() +
+                           "; the model commands live there: build it (make build) or reinstall ptnet\n");
   EXPECT_FALSE(fs::exists(dir_ / "m"));
+}
+
+// Installed (cmake/install.cmake), ptnet is PREFIX/bin/ptnet and ptnet-torch
+// PREFIX/libexec/ptnet/ptnet-torch.
+TEST_F(FrontEnd, InstalledPtnetFindsPtnetTorchInLibexec) {
+  const fs::path ptnet = dir_ / "prefix" / "bin" / "ptnet", torch_exe = dir_ / "prefix" / "libexec" / "ptnet" / "ptnet-torch";
+  fs::create_directories(ptnet.parent_path());
+  fs::create_directories(torch_exe.parent_path());
+  fs::copy_file(PTNET_BINARY, ptnet);
+  fs::create_symlink(fs::path(PTNET_BINARY).parent_path() / "ptnet-torch", torch_exe);
+  const RunResult usage = run(ptnet, "train --epochs 0");
+  EXPECT_EQ(usage.status, 2) << usage.err;  // ptnet-torch's CLI11 answered
+  EXPECT_NE(usage.err.find("--epochs"), std::string::npos) << usage.err;
 }
