@@ -27,10 +27,22 @@ constexpr int kMaxRanks = 256;
 std::array<std::atomic<pid_t>, kMaxRanks> g_children{};  // read by the signal handler
 std::atomic<int> g_signal{0};
 
+// Sends `sig` to every running rank; a stopped one (SIGSTOP, Ctrl-Z) is
+// continued so that it can act on it.
+void signal_ranks(int sig) {
+  for (auto& pid : g_children)
+    if (pid_t p = pid.load(); p > 0) {
+      ::kill(p, sig);
+      ::kill(p, SIGCONT);
+    }
+}
+
+// Ctrl-C (SIGINT, SIGTERM, SIGHUP) of the launcher: the ranks stop, then the
+// launcher dies of the same signal. Only the launcher's own signals come
+// here: those it sends its ranks (signal_ranks) are not recorded.
 extern "C" void forward_signal(int sig) {
   g_signal.store(sig);
-  for (auto& pid : g_children)
-    if (pid_t p = pid.load(); p > 0) ::kill(p, SIGTERM);
+  signal_ranks(SIGTERM);
 }
 
 // A TCP port free on 127.0.0.1 now (the kernel's choice); rank 0's store
@@ -105,7 +117,7 @@ void run_local_ranks(int nproc, double grace_s) {
     argv.push_back(nullptr);
     const pid_t pid = ::fork();
     if (pid < 0) {
-      forward_signal(SIGTERM);
+      signal_ranks(SIGTERM);
       throw Error("train --nproc: cannot start rank " + std::to_string(r) + " (fork failed)");
     }
     if (pid == 0) {
@@ -138,12 +150,8 @@ void run_local_ranks(int nproc, double grace_s) {
     }
     if (pid < 0 && errno != EINTR) break;
     const double since = failed_rank >= 0 ? std::chrono::duration<double>(Clock::now() - failed_at).count() : 0;
-    if (failed_rank >= 0 && !termed && since > grace_s) forward_signal(SIGTERM), termed = true;
-    if (failed_rank >= 0 && !killed && since > grace_s + 5) {
-      for (auto& p : g_children)
-        if (pid_t c = p.load(); c > 0) ::kill(c, SIGKILL);
-      killed = true;
-    }
+    if (failed_rank >= 0 && !termed && since > grace_s) signal_ranks(SIGTERM), termed = true;
+    if (failed_rank >= 0 && !killed && since > grace_s + 5) signal_ranks(SIGKILL), killed = true;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   if (const int sig = g_signal.load(); sig != 0) {  // Ctrl-C: die of it, as a single process would

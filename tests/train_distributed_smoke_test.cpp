@@ -22,6 +22,7 @@
 using namespace ptnet;
 using ptnet::testing_cli::run_ptnet;
 using ptnet::testing_cli::slurp;
+using ptnet::testing_cli::wait_status;
 namespace fs = std::filesystem;
 
 namespace {
@@ -59,19 +60,7 @@ std::vector<std::pair<std::string, torch::Tensor>> weights_of(const fs::path& mo
 // A ptnet process in the background, its stderr into `err`. Its ranks
 // meet through a file:// rendezvous, on the loopback interface.
 pid_t spawn(const std::string& args, const fs::path& err) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const std::string cmd = "GLOO_SOCKET_IFNAME=lo exec '" + std::string(PTNET_BINARY) + "' " + args + " 2>'" + err.string() + "' >/dev/null";
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  return pid;
-}
-
-int wait_status(pid_t pid) {
-  int raw = 0;
-  ::waitpid(pid, &raw, 0);
-  return WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  return ptnet::testing_cli::spawn_ptnet(args, err, "GLOO_SOCKET_IFNAME=lo");
 }
 
 }  // namespace
@@ -141,9 +130,12 @@ TEST_F(Distributed, BadRendezvousIsOneLineError) {
   EXPECT_NE(r.err.find("ptnet: error: --rendezvous tcp://127.0.0.1:1: rank 1 could not reach rank 0"),
             std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  r = run_ptnet(base + " --world-size 2 --rank 1 --rendezvous udp://x:1", scratch("b2"));
-  EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("--rendezvous: expected tcp://HOST:PORT or file://PATH"), std::string::npos) << r.err;
+  // A port is decimal: 0x7000 is not 28672, 1e3 not 1000.
+  for (const std::string bad : {"udp://x:1", "tcp://127.0.0.1:0x7000", "tcp://127.0.0.1:1e3", "tcp://127.0.0.1:65536"}) {
+    r = run_ptnet(base + " --world-size 2 --rank 1 --dist-timeout 1 --rendezvous " + bad, scratch("b2"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("--rendezvous: expected tcp://HOST:PORT or file://PATH"), std::string::npos) << r.err;
+  }
   r = run_ptnet(base + " --world-size 2 --rank 2 --rendezvous tcp://127.0.0.1:1", scratch("b3"));
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("--rank: must be in 0-1, found 2"), std::string::npos) << r.err;

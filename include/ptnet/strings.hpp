@@ -5,8 +5,10 @@
 //   ptnet::split_list("1, 2,,3")              // {"1", "2", "3"} (empty items dropped)
 //   ptnet::lower(ptnet::trim("  Male "))      // "male"
 //   double v; ptnet::parse_number("1e3", v)  // true, v = 1000
+//   std::int64_t n; ptnet::parse_integer("1e3", n)  // false: digits only
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,6 +29,12 @@ bool starts_with(std::string_view s, std::string_view prefix);
 bool ends_with(std::string_view s, std::string_view suffix);
 // A finite number that is the whole (trimmed) text; false otherwise (value unchanged).
 bool parse_number(std::string_view text, double& value);
+// A whole number in decimal digits, an optional '-' first, that is the whole
+// (trimmed) text and fits in 64 bits: "0x10", "1.0", "3L", "+1" and
+// "4294967298" for an int are not; false otherwise (value unchanged).
+bool parse_integer(std::string_view text, std::int64_t& value);
+// The same within [lo, hi].
+bool parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std::int64_t& value);
 // A message as one line (how the CLI and the Python module show an error):
 // line breaks become "; ", other control bytes are escaped (\x1b), trailing
 // blanks and semicolons dropped.

@@ -2,6 +2,7 @@
 #include "ptnet/strings.hpp"
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -62,6 +63,22 @@ bool parse_number(std::string_view text, double& value) {
   char* end = nullptr;
   const double v = std::strtod(t.c_str(), &end);
   if (end != t.c_str() + t.size() || !std::isfinite(v)) return false;
+  value = v;
+  return true;
+}
+
+bool parse_integer(std::string_view text, std::int64_t& value) {
+  const std::string t = trim(text);
+  std::int64_t v = 0;
+  const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), v);  // digits, a leading '-'
+  if (t.empty() || error != std::errc() || end != t.data() + t.size()) return false;
+  value = v;
+  return true;
+}
+
+bool parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std::int64_t& value) {
+  std::int64_t v = 0;
+  if (!parse_integer(text, v) || v < lo || v > hi) return false;
   value = v;
   return true;
 }

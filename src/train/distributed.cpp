@@ -2,10 +2,8 @@
 // translation unit that includes c10d (compiled with USE_C10D_GLOO).
 #include "distributed.hpp"
 
-#include <torch/csrc/distributed/c10d/FileStore.hpp>
 #include <torch/csrc/distributed/c10d/PrefixStore.hpp>
 #include <torch/csrc/distributed/c10d/ProcessGroupGloo.hpp>
-#include <torch/csrc/distributed/c10d/TCPStore.hpp>
 #include <glog/logging.h>
 #include <torch/torch.h>
 
@@ -16,6 +14,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/strings.hpp"
+#include "rendezvous_store.hpp"
 
 namespace ptnet {
 namespace {
@@ -44,9 +43,8 @@ Address parse_rendezvous(const std::string& text) {
   if (colon == std::string::npos || colon == 0) throw Error(bad);
   a.tcp = true;
   a.host = rest.substr(0, colon);
-  double port = 0;
-  if (!parse_number(rest.substr(colon + 1), port) || port != std::floor(port) || port < 1 || port > 65535)
-    throw Error(bad);
+  std::int64_t port = 0;  // decimal: not 0x7000, not 1e3
+  if (!parse_integer(rest.substr(colon + 1), 1, 65535, port)) throw Error(bad);
   a.port = int(port);
   return a;
 }
@@ -93,18 +91,10 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
   const std::string me = "rank " + std::to_string(o.rank);
   const std::string secs = number_text(o.timeout_s) + " s";
   try {
-    if (a.tcp) {
-      c10d::TCPStoreOptions so;
-      so.port = std::uint16_t(a.port);
-      so.isServer = o.rank == 0;
-      so.numWorkers = std::size_t(o.world_size);
-      so.waitWorkers = false;  // joining is checked below, with messages
-      so.timeout = impl->timeout;
-      impl->store = c10::make_intrusive<c10d::TCPStore>(a.host, so);
-    } else {
-      impl->store = c10::make_intrusive<c10d::FileStore>(a.path, o.world_size);
-      impl->store->setTimeout(impl->timeout);
-    }
+    impl->store = a.tcp ? tcp_store(a.host, a.port, o.rank == 0, o.world_size, impl->timeout)
+                        : file_store(a.path, o.rank, o.world_size, impl->timeout);
+  } catch (const Error& e) {
+    throw Error("--rendezvous " + o.rendezvous + ": " + me + " " + e.what());
   } catch (const std::exception& e) {
     throw Error("--rendezvous " + o.rendezvous + ": " + me + " could not " +
                 (o.rank == 0 && a.tcp ? "listen" : "reach rank 0") + " within " + secs + " (" + short_detail(e) + ")");

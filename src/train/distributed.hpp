@@ -1,14 +1,16 @@
 // train/distributed.hpp: the ranks of a data-parallel training run, on
-// PyTorch's c10d with the Gloo backend (no networking of our own). Private to
-// the train stage: c10d and Gloo are included by distributed.cpp only.
+// PyTorch's c10d with the Gloo backend. Private to the train stage: c10d
+// and Gloo are included by distributed.cpp (and the stores by
+// rendezvous_store.cpp) only.
 //
 //   Communicator comm = Communicator::join({2, rank, "tcp://10.0.0.1:29500", 60});
 //   comm.allreduce(tensors);      // sums in place over the ranks
 //   comm.allreduce(values);       // doubles, the same
 //
-// Rendezvous: tcp://HOST:PORT (rank 0 hosts a c10d::TCPStore on PORT; every
-// rank reaches it at HOST) or file://PATH (a c10d::FileStore on a shared
-// filesystem; the file must not be left from an earlier run). Every wait
+// Rendezvous (rendezvous_store.hpp): tcp://HOST:PORT (rank 0 serves the
+// store on PORT, listening on the address HOST names only; every rank
+// reaches it at HOST) or file://PATH (a c10d::FileStore on a shared
+// filesystem; rank 0 creates the file, which must not exist). Every wait
 // (joining, each collective) is bounded by `timeout_s`; a peer that dies
 // closes its connections, so the survivors fail at their next collective.
 // Every failure is a ptnet::Error of one line; a lost peer is named
