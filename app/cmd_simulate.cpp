@@ -15,6 +15,7 @@
 
 #include "command.hpp"
 #include "ptnet/body_spec.hpp"
+#include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/simulate_dataset.hpp"
@@ -57,14 +58,6 @@ struct SimulateCli {
   std::string shard;  // "K/N"
 };
 
-// --shard K/N: 0 <= K < N.
-std::pair<int, int> parse_shard(const std::string& text) {
-  int k = -1, n = -1;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 || k < 0 || k >= n)
-    throw Error("--shard: expected K/N with 0 <= K < N (e.g. 0/4), found " + escaped(text));
-  return {k, n};
-}
 
 void run(const SimulateCli& c) {
   const bool quiet = globals().quiet;
@@ -81,7 +74,8 @@ void run(const SimulateCli& c) {
   o.noise_floor = !c.no_floor;
   o.compression = c.compression;
   o.generator = std::string("ptnet ") + PTNET_VERSION + " simulate";
-  if (!c.shard.empty()) std::tie(o.shard_index, o.shard_count) = parse_shard(c.shard);
+  if (!c.shard.empty() && !parse_shard(c.shard, o.shard_index, o.shard_count))
+    throw Error("--shard: expected K/N with 0 <= K < N (e.g. 0/4), found " + escaped(c.shard));
   SimOptions& s = o.sim;
   s.mat = MatSpec{c.rows, c.cols, c.pitch_m};
   s.placement = parse_placement(c.placement);

@@ -59,7 +59,10 @@ TEST_F(ShardCli, MergedShardsDescribeAsTheWhole) {
 }
 
 TEST_F(ShardCli, BadShardIsOneLineError) {
-  for (const std::string bad : {"2/2", "x", "1/0", "-1/2", "1/2x"}) {
+  // Whole decimal numbers that fit: 1/4294967298 is not 1/2 (2^32 + 2),
+  // 0/4294967297 not 0/1 (unsharded).
+  for (const std::string bad : {"2/2", "x", "1/0", "-1/2", "1/2x", "1/4294967298", "0/4294967297", "0x1/2", "1.0/2",
+                                "+1/2"}) {
     auto r = ptnet(kSimulate + " --shard " + bad + " --out s.h5");
     EXPECT_EQ(r.status, 1) << bad;
     EXPECT_EQ(r.err.rfind("ptnet: error: --shard: expected K/N with 0 <= K < N", 0), 0u) << r.err;

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "data_test_util.hpp"
+#include <filesystem>
+
 #include "ptnet/data.hpp"
+#include "ptnet/motion.hpp"
 #include "ptnet/simulate_dataset.hpp"
 
 namespace ptnet {
@@ -96,6 +99,52 @@ TEST(SimulateShard, MergeRefusesIncompleteRepeatedOrForeignParts) {
   EXPECT_NE(merge({"p0.h5", "p1.h5"}).find("exists"), std::string::npos);  // never overwritten without force
   EXPECT_EQ(error_of([&] { simulate_dataset(clips, kBodies, dir.file("x.h5"), options(2, 2)); }),
             "--shard: expected K/N with 0 <= K < N, found 2/2");
+}
+
+// Shards of different runs do not merge though their options and counts
+// agree: other clip lengths (--seconds), other BVH files; nor does a shard
+// that lost a sequence.
+TEST(SimulateShard, MergeRefusesShardsOfOtherRunsOrIncompleteShards) {
+  TempDir dir("simulate_shard_runs");
+  const auto merge = [&](std::vector<std::string> names) {
+    std::vector<std::string> paths;
+    for (const auto& n : names) paths.push_back(dir.file(n));
+    return error_of([&] { merge_datasets(paths, dir.file("out.h5"), false); });
+  };
+  simulate_dataset(embedded_clips(1, 1, 1.0, 3), kBodies, dir.file("a0.h5"), options(0, 2));
+  simulate_dataset(embedded_clips(1, 1, 1.5, 3), kBodies, dir.file("b1.h5"), options(1, 2));
+  EXPECT_NE(merge({"a0.h5", "b1.h5"}).find(dir.file("b1.h5") + ": is a shard of another run than " + dir.file("a0.h5")),
+            std::string::npos)
+      << merge({"a0.h5", "b1.h5"});
+  // Two folders of as many BVH files, the files' bytes differing.
+  for (const std::string folder : {"x", "y"}) {
+    std::filesystem::create_directories(dir.file(folder));
+    for (int i = 0; i < 2; ++i) {
+      GenerateOptions g;
+      g.performer = 1 + i;
+      g.seconds = folder == "x" ? 1.0 : 1.2;
+      write_bvh(motion_to_bvh(generate_motion(g)), dir.file(folder + "/clip" + std::to_string(i) + ".bvh"), false);
+    }
+  }
+  simulate_dataset(clips_from_files({dir.file("x")}, "", {}), kBodies, dir.file("x0.h5"), options(0, 2));
+  simulate_dataset(clips_from_files({dir.file("y")}, "", {}), kBodies, dir.file("y1.h5"), options(1, 2));
+  EXPECT_NE(merge({"x0.h5", "y1.h5"}).find("is a shard of another run"), std::string::npos) << merge({"x0.h5", "y1.h5"});
+  // A shard that lost its last sequence (copied without it).
+  simulate_dataset(embedded_clips(1, 1, 1.0, 3), kBodies, dir.file("a1.h5"), options(1, 2));
+  {
+    const Dataset full = Dataset::open(dir.file("a1.h5"));
+    DatasetWriter w(dir.file("a1_short.h5"), full.info(), full.bodies(), false);
+    for (std::size_t i = 0; i + 1 < full.sequences().size(); ++i) {
+      const SequenceMeta& m = full.sequences()[i];
+      w.add(m, full.read(m.name));
+      if (m.floor) w.add_floor(m.name, full.read_floor(m.name));
+    }
+    w.commit();
+  }
+  EXPECT_EQ(merge({"a0.h5", "a1_short.h5"}),
+            dir.file("a1_short.h5") + ": shard 1/2 of a run of 12 sequences holds 5 sequences, expected 6: an incomplete shard");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.h5")));
+  EXPECT_EQ(merge({"a1.h5", "a0.h5"}), "(no error)");
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ptnet/body_spec.hpp"
@@ -114,11 +115,18 @@ class Dataset {
 // Merges datasets into one at `out_path` (atomically; an existing file needs
 // `force`): the shards of one `ptnet simulate --shard K/N` run, or any
 // datasets with the same mat, fps, generator, bodies and config. Shards must
-// all be present, once each (any order); "shard" is removed from the config,
-// so the result has the unsharded run's sequences (with their /floor
-// copies), attributes and bodies. A sequence name in two inputs is an Error
-// naming both. Returns the number of sequences written.
+// all be present, once each (any order), of one run (the same options and
+// the same clips: "run" in their config records the clips' digest and the
+// run's sequence count) and complete (each the sequences of its block);
+// "shard" and "run" are removed from the config, so the result has the
+// unsharded run's sequences (with their /floor copies), attributes and
+// bodies. A sequence name in two inputs is an Error naming both. Returns
+// the number of sequences written.
 int merge_datasets(const std::vector<std::string>& inputs, const std::string& out_path, bool force);
+
+// A shard "K/N" (decimal, 0 <= K < N < 2^31, nothing else: "1/2x", "0x1/2"
+// and "1/4294967298" are not): true and K, N; false otherwise.
+bool parse_shard(std::string_view text, int& index, int& count);
 
 // A synthetic walk for tests, benchmarks and figures (not the simulator):
 // a walker crossing the mat from the near end (last row) towards row 0,

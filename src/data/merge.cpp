@@ -1,29 +1,40 @@
 // merge_datasets(): the shards of a sharded `ptnet simulate` (or compatible
 // datasets) into one file (see ptnet/data.hpp).
 #include <algorithm>
-#include <cstdio>
+#include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
 
-// The config without "shard", and the shard ("K/N", or "" when unsharded).
-std::pair<std::string, std::string> split_shard(const Dataset& d) {
+// A dataset's config without "shard" and "run", its shard ("K/N", or ""
+// when unsharded) and its run's identity ("run": clips digest, sequences).
+struct ShardConfig {
+  std::string config, shard;
+  nlohmann::ordered_json run;  // null when absent
+};
+
+ShardConfig split_shard(const Dataset& d) {
   nlohmann::ordered_json j;
   try {
     j = nlohmann::ordered_json::parse(d.info().config_json);
   } catch (const nlohmann::json::exception&) {
-    return {d.info().config_json, ""};  // not JSON: compared as text
+    return {d.info().config_json, "", nullptr};  // not JSON: compared as text
   }
-  if (!j.is_object() || !j.contains("shard") || !j["shard"].is_string()) return {j.dump(), ""};
-  const std::string shard = j["shard"].get<std::string>();
+  if (!j.is_object() || !j.contains("shard") || !j["shard"].is_string()) return {j.dump(), "", nullptr};
+  ShardConfig c;
+  c.shard = j["shard"].get<std::string>();
+  if (j.contains("run")) c.run = j["run"];
   j.erase("shard");
-  return {j.dump(), shard};
+  j.erase("run");
+  c.config = j.dump();
+  return c;
 }
 
 bool same_body(const BodySpec& a, const BodySpec& b) {
@@ -31,20 +42,41 @@ bool same_body(const BodySpec& a, const BodySpec& b) {
          a.role == b.role;
 }
 
-// Every shard K/N of one N present once.
-void check_shards(const std::vector<std::string>& inputs, const std::vector<std::string>& shards) {
+// Every shard K/N of one N present once, each of the same run (its clips'
+// digest and sequence count in "run") and complete: shard K of a run of J
+// sequences holds the J K / N .. J (K + 1) / N - 1 th.
+void check_shards(const std::vector<std::string>& inputs, const std::vector<Dataset>& sets,
+                  const std::vector<ShardConfig>& configs) {
   int count = -1;
   std::map<int, std::string> seen;  // K -> file
+  const nlohmann::ordered_json& run = configs[0].run;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const std::string& shard = configs[i].shard;
     int k = -1, n = -1;
-    char tail = 0;
-    if (std::sscanf(shards[i].c_str(), "%d/%d%c", &k, &n, &tail) != 2 || k < 0 || n < 1 || k >= n)
-      throw Error::in(inputs[i], "expected a shard K/N in its config, found " + escaped(shards[i]));
+    if (!parse_shard(shard, k, n))
+      throw Error::in(inputs[i], "expected a shard K/N in its config, found " + escaped(shard));
     if (count >= 0 && n != count)
-      throw Error::in(inputs[i], "is shard " + shards[i] + ", " + inputs[0] + " one of " + std::to_string(count));
+      throw Error::in(inputs[i], "is shard " + shard + ", " + inputs[0] + " one of " + std::to_string(count));
     count = n;
     if (!seen.emplace(k, inputs[i]).second)
-      throw Error::in(inputs[i], "is shard " + shards[i] + ", as is " + seen[k]);
+      throw Error::in(inputs[i], "is shard " + shard + ", as is " + seen[k]);
+    const nlohmann::ordered_json& mine = configs[i].run;
+    if (!mine.is_object() || !mine.contains("clips") || !mine.contains("sequences") ||
+        !mine["sequences"].is_number_unsigned())
+      throw Error::in(inputs[i], "is a shard whose config does not identify its run (\"run\": its clips' digest "
+                                 "and sequence count; an older ptnet did not record it): simulate it again");
+    if (mine["clips"] != run["clips"])
+      throw Error::in(inputs[i], "is a shard of another run than " + inputs[0] + " (other clips: digest " +
+                                     mine["clips"].dump() + ", " + run["clips"].dump() + ")");
+    if (mine["sequences"] != run["sequences"])
+      throw Error::in(inputs[i], "is a shard of a run of " + mine["sequences"].dump() + " sequences, " + inputs[0] +
+                                     " of " + run["sequences"].dump());
+    const std::uint64_t jobs = mine["sequences"].get<std::uint64_t>();
+    const std::uint64_t block = jobs * std::uint64_t(k + 1) / std::uint64_t(n) - jobs * std::uint64_t(k) / std::uint64_t(n);
+    if (sets[i].sequences().size() != block)
+      throw Error::in(inputs[i], "shard " + shard + " of a run of " + std::to_string(jobs) + " sequences holds " +
+                                     std::to_string(sets[i].sequences().size()) + " sequences, expected " +
+                                     std::to_string(block) + ": an incomplete shard");
   }
   for (int k = 0; k < count; ++k)
     if (!seen.count(k))
@@ -54,18 +86,30 @@ void check_shards(const std::vector<std::string>& inputs, const std::vector<std:
 
 }  // namespace
 
+bool parse_shard(std::string_view text, int& index, int& count) {
+  const std::size_t slash = text.find('/');
+  std::int64_t k = 0, n = 0;
+  if (slash == std::string_view::npos || !parse_integer(text.substr(0, slash), 0, INT32_MAX, k) ||
+      !parse_integer(text.substr(slash + 1), 1, INT32_MAX, n) || k >= n)
+    return false;
+  index = int(k);
+  count = int(n);
+  return true;
+}
+
 int merge_datasets(const std::vector<std::string>& inputs, const std::string& out_path, bool force) {
   if (inputs.empty()) throw Error("merge: no input datasets");
   check_output_path(out_path, force);
   std::vector<Dataset> sets;
   for (const auto& path : inputs) sets.push_back(Dataset::open(path));
   const Dataset& first = sets.front();
-  const auto [config, first_shard] = split_shard(first);
-  std::vector<std::string> shards;
+  std::vector<ShardConfig> configs;
+  for (const Dataset& d : sets) configs.push_back(split_shard(d));
+  const std::string& config = configs[0].config;
+  const std::string& first_shard = configs[0].shard;
   for (std::size_t i = 0; i < sets.size(); ++i) {
     const Dataset& d = sets[i];
-    const auto [c, shard] = split_shard(d);
-    shards.push_back(shard);
+    const std::string& c = configs[i].config;
     const auto differs = [&](const std::string& what) {
       return Error::in(inputs[i], what + " differs from " + inputs[0] + "'s: not parts of one dataset");
     };
@@ -79,16 +123,16 @@ int merge_datasets(const std::vector<std::string>& inputs, const std::string& ou
   }
   const bool sharded = !first_shard.empty();
   for (std::size_t i = 0; i < sets.size(); ++i)
-    if (shards[i].empty() == sharded)
+    if (configs[i].shard.empty() == sharded)
       throw Error::in(inputs[i], std::string(sharded ? "is not a shard" : "is a shard") + ", " + inputs[0] +
                                      (sharded ? " is" : " is not"));
-  if (sharded) check_shards(inputs, shards);
+  if (sharded) check_shards(inputs, sets, configs);
   // Shards in K order: the unsharded run's sequence order.
   std::vector<std::size_t> order(sets.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   if (sharded)
     std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return std::stoi(shards[a]) < std::stoi(shards[b]); });
+              [&](std::size_t a, std::size_t b) { return std::stoi(configs[a].shard) < std::stoi(configs[b].shard); });
   std::map<std::string, std::string> owner;  // sequence name -> file
   for (std::size_t i : order)
     for (const auto& m : sets[i].sequences())

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <future>
 #include <memory>
 #include <mutex>
@@ -13,6 +14,7 @@
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/zip_check.hpp"
 #include "core/parallel.hpp"
 
 namespace ptnet {
@@ -188,10 +190,36 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
   if (writing.valid()) writing.get();
 }
 
-// --shard K/N: the jobs [J K / N, J (K + 1) / N) of J, and "shard": "K/N"
-// at the end of the config (ptnet merge removes it).
-std::pair<int, int> shard_jobs(int jobs, const SimulateDatasetOptions& o, const std::string& out_path,
-                               std::string& config_json) {
+// What identifies the clips of a run on any host: per clip its metadata and
+// how it is generated or read, with a BVH file's bytes (CRC-32), not its
+// path (hosts may mount the files elsewhere) nor the loaded motion (floating
+// point may differ between CPUs). CRC-32 of all that, in hex.
+std::string clips_digest(const std::vector<ClipSource>& clips) {
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const ClipSource& c : clips) {
+    nlohmann::ordered_json j = {{"motion_id", c.meta.motion_id}, {"performer", c.meta.performer},
+                                {"category", c.meta.category},   {"take", c.meta.take}};
+    if (c.path.empty()) {
+      const GenerateOptions& g = c.procedural;
+      j["procedural"] = {category_name(g.category), g.performer, g.take, g.seconds, g.height_cm, g.seed};
+    } else {
+      const MotionOptions& m = c.motion;
+      j["bvh_crc32"] = crc32(read_text_file(c.path));
+      j["read"] = {units_name(m.units), m.metres_per_unit, m.up == UpAxis::z ? "z" : "y", m.keep_tpose};
+    }
+    all.push_back(std::move(j));
+  }
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(crc32(all.dump())));
+  return hex;
+}
+
+// --shard K/N: the jobs [J K / N, J (K + 1) / N) of J, and at the end of the
+// config "shard": "K/N" and "run": what identifies the whole run beyond the
+// options before them (its clips' digest, its J sequences), which ptnet
+// merge checks and removes.
+std::pair<int, int> shard_jobs(int jobs, const std::vector<ClipSource>& clips, const SimulateDatasetOptions& o,
+                               const std::string& out_path, std::string& config_json) {
   const int k = o.shard_index, n = o.shard_count;
   if (n < 1 || k < 0 || k >= n)
     throw Error("--shard: expected K/N with 0 <= K < N, found " + std::to_string(k) + "/" + std::to_string(n));
@@ -201,6 +229,7 @@ std::pair<int, int> shard_jobs(int jobs, const SimulateDatasetOptions& o, const 
                                   " sequences: at most one shard per sequence");
   nlohmann::ordered_json j = nlohmann::ordered_json::parse(config_json);
   j["shard"] = std::to_string(k) + "/" + std::to_string(n);
+  j["run"] = {{"clips", clips_digest(clips)}, {"sequences", jobs}};
   config_json = j.dump();
   return {int(std::int64_t(jobs) * k / n), int(std::int64_t(jobs) * (k + 1) / n)};
 }
@@ -226,7 +255,7 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
   info.generator = options.generator;
   info.compression = options.compression;
   info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
-  const auto [begin, end] = shard_jobs(int(metas.size()), options, out_path, info.config_json);
+  const auto [begin, end] = shard_jobs(int(metas.size()), clips, options, out_path, info.config_json);
   DatasetWriter writer(out_path, info, bodies, options.force);
   simulate_chunks(motions, places, bodies, built, metas, options, threads, begin, end, writer, summary);
   writer.commit();
