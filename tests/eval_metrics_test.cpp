@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "ptnet/error.hpp"
+#include "ptnet/csv.hpp"
 #include "ptnet/eval.hpp"
 
 namespace ptnet {
@@ -154,12 +155,44 @@ TEST(Table, GroupMeansAndCsvRoundTrip) {
   EXPECT_NE(table.find("Unseen motions"), std::string::npos);
 }
 
+// Names come from user files: a BVH "walk, fast.bvh", a body id that a
+// spreadsheet would run as a formula. metrics.csv is RFC 4180 (every row
+// has the header's 15 fields), no text field starts with = + - @, and every
+// value reads back as it was.
+TEST(Table, CsvQuotesAndNeutralisesUserText) {
+  EvalRow r = row("model", "walking", 1, 2.0, 0.9);
+  r.motion_id = "walk, fast";
+  r.source_sequence = "walk, fast__\"o1\"";
+  r.source_body = "=HYPERLINK(\"http://x\",\"y\")";
+  r.target_body = "'+quoted";
+  r.target_sequence = "line\nbreak";
+  r.category = "-1+2";
+  const std::string csv = format_metrics_csv({r, row("copy", "@rom", 2, 1.0, 0.5)});
+  const CsvTable t = parse_csv(csv, "metrics.csv");
+  ASSERT_EQ(t.header.size(), 15u);
+  ASSERT_EQ(t.rows.size(), 2u);
+  for (const CsvRow& row : t.rows)
+    for (const std::string& f : row.fields)
+      EXPECT_EQ(std::string("=+-@").find(f.empty() ? ' ' : f.front()), std::string::npos) << f;
+  EXPECT_EQ(t.rows[0].fields[size_t(t.column("source_body"))], "'=HYPERLINK(\"http://x\",\"y\")");
+  const auto back = parse_metrics_csv(csv, "metrics.csv");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].motion_id, r.motion_id);
+  EXPECT_EQ(back[0].source_sequence, r.source_sequence);
+  EXPECT_EQ(back[0].source_body, r.source_body);
+  EXPECT_EQ(back[0].target_body, r.target_body);
+  EXPECT_EQ(back[0].target_sequence, r.target_sequence);
+  EXPECT_EQ(back[0].category, r.category);
+  EXPECT_EQ(back[1].category, "@rom");
+  EXPECT_EQ(back[0].metrics.rmse_kpa, 2.0);
+}
+
 TEST(Table, MalformedCsvNamesFileAndLine) {
   try {
     parse_metrics_csv(format_metrics_csv({}) + "model,x\n", "m.csv");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "m.csv:2: expected 15 columns, found 2");
+    EXPECT_STREQ(e.what(), "m.csv:2: expected 15 fields (as the header), found 2");
   }
 }
 

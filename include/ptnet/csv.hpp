@@ -1,5 +1,6 @@
 // ptnet/csv.hpp: the one CSV reader (RFC 4180) behind every CSV ptnet reads
-// (bodies, clips, recordings manifests).
+// (bodies, clips, recordings manifests, metrics.csv), and its fields for
+// writing.
 //
 //   ptnet::CsvTable t = ptnet::read_csv("bodies.csv");
 //   const int h = t.column("height_cm");          // -1 if absent
@@ -45,6 +46,14 @@ CsvTable parse_csv(std::string_view text, const std::string& source);
 // A field for writing: quoted (with "" for ") when it holds a comma, quote,
 // line break or surrounding blanks; unchanged otherwise.
 std::string csv_field(const std::string& value);
+// A text field of a CSV that spreadsheets open (metrics.csv): csv_field of
+// the value, with a value a spreadsheet would take for a formula (leading
+// =, +, -, @, tab or CR) neutralised by a leading ' ("CSV injection"); a
+// value that starts with ' gets one more, so that csv_text_value reads
+// every value back as it was.
+std::string csv_text_field(const std::string& value);
+// The value of a field csv_text_field wrote (as parse_csv returns it).
+std::string csv_text_value(const std::string& field);
 
 // Reads and parses a file (read_text_file: size limits), noted as an input.
 CsvTable read_csv(const std::string& path);

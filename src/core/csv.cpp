@@ -132,6 +132,15 @@ std::string csv_field(const std::string& value) {
   return out + "\"";
 }
 
+std::string csv_text_field(const std::string& value) {
+  const bool neutralise = !value.empty() && std::string_view("=+-@\t\r'").find(value.front()) != std::string_view::npos;
+  return csv_field(neutralise ? "'" + value : value);
+}
+
+std::string csv_text_value(const std::string& field) {
+  return !field.empty() && field.front() == '\'' ? field.substr(1) : field;
+}
+
 CsvTable read_csv(const std::string& path) {
   note_input(path);
   return parse_csv(read_text_file(path), path);

@@ -2,11 +2,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
+#include "ptnet/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
@@ -134,9 +137,10 @@ std::string format_table(const std::vector<EvalRow>& rows) {
 }
 
 namespace {
-const char* kCsvHeader =
-    "method,motion_id,category,take,source_sequence,target_sequence,source_body,target_body,"
-    "frames,rmse_kpa,binary_r2,cop_error_cm,cop_frames,force_error_pct,contact_iou";
+const std::vector<std::string> kCsvColumns{
+    "method",      "motion_id",   "category",   "take",     "source_sequence", "target_sequence",
+    "source_body", "target_body", "frames",     "rmse_kpa", "binary_r2",       "cop_error_cm",
+    "cop_frames",  "force_error_pct", "contact_iou"};
 
 std::string full(double v) {
   char buf[64];
@@ -145,59 +149,62 @@ std::string full(double v) {
 }
 }  // namespace
 
+// RFC 4180 (core's csv_text_field for the text columns: names come from
+// user files, e.g. a BVH named "walk, fast.bvh" or a body id "=HYPERLINK(...)").
 std::string format_metrics_csv(const std::vector<EvalRow>& rows) {
   std::ostringstream out;
-  out << kCsvHeader << "\n";
+  out << join(kCsvColumns) << "\n";
   for (const auto& r : rows) {
     const auto& m = r.metrics;
-    out << r.method << ',' << r.motion_id << ',' << r.category << ',' << r.take << ','
-        << r.source_sequence << ',' << r.target_sequence << ',' << r.source_body << ','
-        << r.target_body << ',' << r.frames << ',' << full(m.rmse_kpa) << ','
-        << full(m.binary_r2) << ',' << full(m.cop_error_cm) << ',' << m.cop_frames << ','
+    out << csv_text_field(r.method) << ',' << csv_text_field(r.motion_id) << ',' << csv_text_field(r.category)
+        << ',' << r.take << ',' << csv_text_field(r.source_sequence) << ',' << csv_text_field(r.target_sequence)
+        << ',' << csv_text_field(r.source_body) << ',' << csv_text_field(r.target_body) << ',' << r.frames << ','
+        << full(m.rmse_kpa) << ',' << full(m.binary_r2) << ',' << full(m.cop_error_cm) << ',' << m.cop_frames << ','
         << full(m.force_error_pct) << ',' << full(m.contact_iou) << "\n";
   }
   return out.str();
 }
 
 std::vector<EvalRow> parse_metrics_csv(const std::string& text, const std::string& source) {
-  std::istringstream in(text);
-  std::string line;
-  long line_no = 1;
-  if (!std::getline(in, line)) throw Error::in(source, "empty file, expected a metrics.csv header");
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  if (line != kCsvHeader) throw Error::at(source, 1, "the metrics.csv header", "'" + line + "'");
+  const CsvTable t = parse_csv(text, source);
+  const std::string columns = join(kCsvColumns);
+  std::vector<int> c;
+  for (const auto& name : kCsvColumns) c.push_back(t.required(name, columns));
   std::vector<EvalRow> rows;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (f.size() != 15)
-      throw Error::at(source, line_no, "15 columns", std::to_string(f.size()));
-    try {
-      EvalRow r;
-      r.method = f[0];
-      r.motion_id = f[1];
-      r.category = f[2];
-      r.take = std::stoi(f[3]);
-      r.source_sequence = f[4];
-      r.target_sequence = f[5];
-      r.source_body = f[6];
-      r.target_body = f[7];
-      r.frames = std::stoi(f[8]);
-      r.metrics.rmse_kpa = std::stod(f[9]);
-      r.metrics.binary_r2 = std::stod(f[10]);
-      r.metrics.cop_error_cm = std::stod(f[11]);
-      r.metrics.cop_frames = std::stoi(f[12]);
-      r.metrics.force_error_pct = std::stod(f[13]);
-      r.metrics.contact_iou = std::stod(f[14]);
-      rows.push_back(r);
-    } catch (const std::logic_error&) {
-      throw Error::at(source, line_no, "numbers in columns take, frames and metrics", "'" + line + "'");
-    }
+  for (const CsvRow& row : t.rows) {
+    const auto text_of = [&](int i) { return csv_text_value(CsvTable::field(row, c[std::size_t(i)])); };
+    const auto number = [&](int i) {  // as printed by full(): nan and inf too
+      const std::string& f = CsvTable::field(row, c[std::size_t(i)]);
+      char* end = nullptr;
+      const double v = std::strtod(f.c_str(), &end);
+      if (f.empty() || *end != '\0')
+        throw Error::at(source, row.line, "a number in column " + kCsvColumns[std::size_t(i)], escaped(f));
+      return v;
+    };
+    const auto integer = [&](int i) {
+      const double v = number(i);
+      if (!(v == std::floor(v) && std::abs(v) < 2e9))
+        throw Error::at(source, row.line, "a whole number in column " + kCsvColumns[std::size_t(i)],
+                        escaped(CsvTable::field(row, c[std::size_t(i)])));
+      return int(v);
+    };
+    EvalRow r;
+    r.method = text_of(0);
+    r.motion_id = text_of(1);
+    r.category = text_of(2);
+    r.take = integer(3);
+    r.source_sequence = text_of(4);
+    r.target_sequence = text_of(5);
+    r.source_body = text_of(6);
+    r.target_body = text_of(7);
+    r.frames = integer(8);
+    r.metrics.rmse_kpa = number(9);
+    r.metrics.binary_r2 = number(10);
+    r.metrics.cop_error_cm = number(11);
+    r.metrics.cop_frames = integer(12);
+    r.metrics.force_error_pct = number(13);
+    r.metrics.contact_iou = number(14);
+    rows.push_back(r);
   }
   return rows;
 }
