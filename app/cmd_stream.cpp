@@ -65,7 +65,7 @@ void write_fully(const float* data, std::size_t floats) {
 long long read_npy_header(int fd, std::string head, const std::string& name, const ModelDir& d) {
   if (head.size() < 12) throw Error::in(name, "npy header truncated");
   const std::size_t size = npy_header_size(head, name);
-  if (size > (std::size_t(1) << 20)) throw Error::in(name, "npy header larger than 1 MiB");
+  if (size > kMaxNpyHeaderBytes) throw Error::in(name, "npy header larger than 1 MiB");
   if (size > head.size()) {
     const std::size_t had = head.size();
     head.resize(size);

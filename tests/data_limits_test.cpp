@@ -50,6 +50,18 @@ TEST(Limits, NpyShapesAreCheckedWithoutOverflow) {
             p + ": expected 9851624184872960 data bytes for shape [1099511627776, 80, 28], found 16");
 }
 
+// A shape holds whole decimal numbers only: "80.9" is not 80, "3L" (the
+// Python 2 long suffix) not 3, "0x10" not 16; "(3,)" is a 1-tuple.
+TEST(Limits, NpyShapesAreWholeNumbers) {
+  for (const std::string shape : {"(2, 80.9, 28)", "(3L, 4, 4)", "(0x2, 4)", "(2, +4)", "(2, 4 4)", "(2,, 4)", "(,)"}) {
+    EXPECT_EQ(error_of([&] { parse_npy_header(npy_bytes(shape, ""), "x.npy"); }),
+              "x.npy: npy header: bad shape '" + shape + "'") << shape;
+  }
+  EXPECT_EQ(parse_npy_header(npy_bytes("(32,)", ""), "x.npy").shape, (std::vector<std::int64_t>{32}));
+  EXPECT_EQ(parse_npy_header(npy_bytes("( 2 , 4,4 )", ""), "x.npy").shape, (std::vector<std::int64_t>{2, 4, 4}));
+  EXPECT_EQ(parse_npy(npy_bytes("()", std::string(4, '\0')), "x.npy").data.size(), 1u);
+}
+
 TEST(Limits, NanIsRejectedInNpyAsInDatasets) {
   TempDir d("limits_nan");
   const MatSpec mat{2, 3, 0.02};

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
@@ -81,4 +82,22 @@ TEST(HarImport, BadManifestLinesNameFileAndLine) {
   f.write("b.csv", "1,2,3\n");
   EXPECT_EQ(message("subject,sex,height_cm,weight_kg,file\ns1,f,160,55,b.csv\n"),
             (f.dir / "b.csv").string() + ":1: expected 6 values (2 x 3), found 3");
+}
+
+// The dataset's config names the manifest: valid JSON whatever the name
+// holds (quotes, backslashes, a name that reads like more keys).
+TEST(HarImport, ConfigIsJsonWhateverTheManifestName) {
+  Folder f("ptnet_har_import_names");
+  f.write("a.csv", "1,2,3,4,5,6\n");
+  har::ImportOptions o;
+  o.mat = MatSpec{2, 3, 0.05};
+  int i = 0;
+  for (const std::string name : {"m\"q\\.csv", "x\", \"shard\": \"0\", \"y\": \"z.csv"}) {
+    f.write(name, "subject,sex,height_cm,weight_kg,file\ns1,f,160,55,a.csv\n");
+    const std::string out = (f.dir / ("out" + std::to_string(i++) + ".h5")).string();
+    har::import_recordings((f.dir / name).string(), out, o, false);
+    nlohmann::json config;
+    ASSERT_NO_THROW(config = nlohmann::json::parse(Dataset::open(out).info().config_json)) << name;
+    EXPECT_EQ(config, (nlohmann::json{{"manifest", name}})) << config.dump();
+  }
 }

@@ -31,6 +31,12 @@ inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t(1) << 30;  // 1
 // (FIFOs) are read up to `max_bytes`.
 std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
 
+// Throws Error naming `path` unless it is a regular file (symbolic links
+// followed): "x.npy: is a FIFO, expected a regular file". For inputs whose
+// size is checked before they are read: a FIFO would block, a device
+// (/dev/zero) never end.
+void check_regular_input(const std::string& path);
+
 // Records `path` (device and inode) as an input of this run (this process):
 // no output may replace it afterwards. Readers of user data call it
 // (datasets, .npy, CSV, BVH, the model a transfer loads); read_text_file

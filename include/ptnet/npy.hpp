@@ -19,6 +19,8 @@ namespace ptnet {
 
 // Largest .npy file read (the available memory is checked too).
 inline constexpr std::uint64_t kMaxNpyBytes = std::uint64_t(64) << 30;  // 64 GiB
+// Largest .npy header (numpy writes 64-128 bytes).
+inline constexpr std::size_t kMaxNpyHeaderBytes = std::size_t(1) << 20;  // 1 MiB
 
 struct NpyArray {
   std::vector<std::int64_t> shape;
@@ -26,7 +28,9 @@ struct NpyArray {
 };
 
 // Throws Error naming the file: bad magic, dtype other than float32, Fortran
-// order, truncated data.
+// order, data of another size than the shape's. Reads the header, then only
+// the data the shape announces (checked against the available memory),
+// straight into the array.
 NpyArray read_npy(const std::string& path);
 // The same on the bytes of a file (`name` names it in messages).
 NpyArray parse_npy(const std::string& bytes, const std::string& name);

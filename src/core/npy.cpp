@@ -1,12 +1,15 @@
 // Minimal .npy (NumPy format 1.0-3.0) float32 reader and writer.
 #include "ptnet/npy.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
@@ -33,11 +36,59 @@ std::string dict_value(const std::string& header, const std::string& key, const 
   return header.substr(b, e - b);
 }
 
+// The data bytes the header's shape needs (and its element count).
+std::uint64_t data_bytes(const NpyHeader& h, const std::string& path, std::uint64_t& count) {
+  count = 1;
+  for (std::int64_t v : h.shape) count = checked_mul(count, std::uint64_t(v), path, "npy header: the shape's element count");
+  return checked_mul(count, sizeof(float), path, "npy header: the shape's byte count");
+}
+
 }  // namespace
 
+// The header first, then the data straight into the array: the file is
+// never held twice, and only what the shape announces (checked against the
+// file's size and the available memory) is read.
 NpyArray read_npy(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0)
+    throw Error::in(path, errno == ENOENT ? std::string("no such file") : std::string("cannot open: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throw Error::in(path, "is a folder, expected a file");
   note_input(path);
-  return parse_npy(read_text_file(path, kMaxNpyBytes), path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error::in(path, std::string("cannot open: ") + std::strerror(errno));
+  std::string head(12, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(in.gcount()));
+  const std::size_t header_size = npy_header_size(head, path);
+  if (header_size > kMaxNpyHeaderBytes)
+    throw Error::in(path, "npy header of " + bytes_text(header_size) + ", more than " + bytes_text(kMaxNpyHeaderBytes));
+  if (header_size > head.size()) {
+    const std::size_t had = head.size();
+    head.resize(header_size);
+    in.read(head.data() + had, std::streamsize(header_size - had));
+    if (std::size_t(in.gcount()) != header_size - had) throw Error::in(path, "npy header truncated");
+  }
+  NpyHeader h = parse_npy_header(head, path);
+  std::uint64_t count = 0;
+  const std::uint64_t need = data_bytes(h, path, count);
+  const auto wrong_size = [&](const std::string& found) {
+    return Error::in(path, "expected " + std::to_string(need) + " data bytes for shape " + shape_text(h.shape) +
+                               ", found " + found);
+  };
+  const bool regular = S_ISREG(st.st_mode);
+  if (regular && std::uint64_t(st.st_size) - h.data_offset != need)
+    throw wrong_size(std::to_string(std::uint64_t(st.st_size) - h.data_offset));
+  if (need > kMaxNpyBytes)
+    throw Error::in(path, bytes_text(need) + " of data, more than the " + bytes_text(kMaxNpyBytes) + " a .npy file may have");
+  check_memory(need, path, "reading the array");
+  NpyArray a;
+  a.shape = std::move(h.shape);
+  a.data.resize(std::size_t(count));
+  in.read(reinterpret_cast<char*>(a.data.data()), std::streamsize(need));  // little-endian host
+  if (std::uint64_t(in.gcount()) != need) throw wrong_size(std::to_string(in.gcount()) + (regular ? " (it shrank while read)" : ""));
+  if (in.peek() != std::char_traits<char>::eof()) throw wrong_size("more");
+  if (in.bad()) throw Error::in(path, "read error");
+  return a;
 }
 
 std::size_t npy_header_size(const std::string& bytes, const std::string& path) {
@@ -69,20 +120,12 @@ NpyHeader parse_npy_header(const std::string& bytes, const std::string& path) {
     throw Error::in(path, "npy header: bad shape " + escaped(shape));
   NpyHeader h;
   h.data_offset = end;
-  std::string inner = shape.substr(1, shape.size() - 2);
-  std::stringstream ss(inner);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    auto b = item.find_first_not_of(' ');
-    if (b == std::string::npos) continue;
-    std::int64_t v;
-    try {
-      std::size_t used;
-      v = std::stoll(item.substr(b), &used);
-    } catch (const std::exception&) {
+  const std::vector<std::string> items = split(std::string_view(shape).substr(1, shape.size() - 2), ',');
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].empty() && i + 1 == items.size()) continue;  // "(3,)" and "()"
+    std::int64_t v = 0;
+    if (!parse_integer(items[i], 0, INT64_MAX, v))  // whole decimal numbers: not 80.9, not 3L
       throw Error::in(path, "npy header: bad shape " + escaped(shape));
-    }
-    if (v < 0) throw Error::in(path, "npy header: bad shape " + escaped(shape));
     h.shape.push_back(v);
   }
   return h;
@@ -90,13 +133,11 @@ NpyHeader parse_npy_header(const std::string& bytes, const std::string& path) {
 
 NpyArray parse_npy(const std::string& bytes, const std::string& path) {
   NpyHeader h = parse_npy_header(bytes, path);
+  std::uint64_t count = 0;
+  const std::uint64_t need = data_bytes(h, path, count);
   NpyArray a;
   a.shape = std::move(h.shape);
-  std::uint64_t count = 1;
-  for (std::int64_t v : a.shape)
-    count = checked_mul(count, std::uint64_t(v), path, "npy header: the shape's element count");
   const std::size_t data_at = h.data_offset;
-  const std::uint64_t need = checked_mul(count, sizeof(float), path, "npy header: the shape's byte count");
   if (std::uint64_t(bytes.size() - data_at) != need)
     throw Error::in(path, "expected " + std::to_string(need) + " data bytes for shape " +
                               shape_text(a.shape) + ", found " + std::to_string(bytes.size() - data_at));

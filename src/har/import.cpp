@@ -20,31 +20,40 @@
 namespace ptnet::har {
 namespace {
 
-// [T, rows, cols] kPa from a CSV of one frame per line.
+// [T, rows, cols] kPa from a CSV of one frame per line. The text and the
+// frames are held once each (the frames counted and checked against the
+// available memory before they are parsed).
 PressureSequence read_csv_frames(const std::string& path, const MatSpec& mat, double fps) {
-  std::stringstream in(read_text_file(path));
-  std::vector<float> values;
-  std::string text;
-  long line = 0;
-  int frames = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    if (trim(text).empty()) continue;
-    const auto fields = split(text, ',');
+  const std::string text = read_text_file(path);
+  const auto lines = [&](auto&& visit) {
+    long line = 0;
+    for (std::size_t at = 0; at < text.size();) {
+      const std::size_t end = std::min(text.find('\n', at), text.size());
+      ++line;
+      const std::string_view row(text.data() + at, end - at);
+      if (!trim(row).empty()) visit(row, line);
+      at = end + 1;
+    }
+  };
+  std::uint64_t frames = 0;
+  lines([&](std::string_view, long) { ++frames; });
+  if (frames == 0) throw Error::in(path, "no frames");
+  const std::uint64_t values = checked_mul(frames, std::uint64_t(mat.cells()), path, "the frames' values");
+  check_memory(checked_mul(values, sizeof(float), path, "the frames' bytes"), path, "the frames");
+  PressureSequence s(mat, int(frames), fps);  // frames < lines of a text under 1 GiB
+  std::size_t i = 0;
+  lines([&](std::string_view row, long line) {
+    const auto fields = split(row, ',');
     if (int(fields.size()) != mat.cells())
-      throw Error::at(path, line, std::to_string(mat.cells()) + " values (" + std::to_string(mat.rows) +
-                                      " x " + std::to_string(mat.cols) + ")",
+      throw Error::at(path, line, std::to_string(mat.cells()) + " values (" + std::to_string(mat.rows) + " x " +
+                                      std::to_string(mat.cols) + ")",
                       std::to_string(fields.size()));
     for (const auto& f : fields) {
       double v = 0;
       if (!parse_number(f, v)) throw Error::at(path, line, "a number", escaped(f));
-      values.push_back(float(v));
+      s.kpa[i++] = float(v);
     }
-    ++frames;
-  }
-  if (frames == 0) throw Error::in(path, "no frames");
-  PressureSequence s(mat, frames, fps);
-  s.kpa = std::move(values);
+  });
   return s;
 }
 
@@ -90,13 +99,15 @@ void import_recordings(const std::string& manifest, const std::string& out,
   info.mat = options.mat;
   info.fps = options.fps;
   info.generator = std::string("ptnet ") + PTNET_VERSION + " import";
-  info.config_json = std::string("{\"manifest\": \"") + fs::path(manifest).filename().string() + "\"}";
+  info.config_json = nlohmann::json{{"manifest", fs::path(manifest).filename().string()}}.dump();
   DatasetWriter w(out, info, bodies, force);
   const fs::path base = fs::path(manifest).parent_path();
   std::map<std::string, int> names;
   for (const Row& r : rows) {
     const fs::path file = fs::path(r.file).is_absolute() ? fs::path(r.file) : base / r.file;
     const std::string ext = file.extension().string();
+    if (ext != ".npy" && ext != ".csv") throw Error::at(manifest, r.line, "a .npy or .csv file", escaped(r.file));
+    check_regular_input(file.string());  // a FIFO would block, a device (/dev/zero) never end
     PressureSequence seq;
     if (ext == ".npy") seq = read_npy_sequence(file.string(), options.mat, options.fps);
     else if (ext == ".csv") seq = read_csv_frames(file.string(), options.mat, options.fps);
