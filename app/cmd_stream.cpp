@@ -9,9 +9,12 @@
 // header, shape [T, rows, cols], '<f4', then the frames); --format auto tells
 // them apart by the magic. Output: raw float32 frames, the same count as in.
 #include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -19,6 +22,7 @@
 
 #include "command.hpp"
 #include "ptnet/body_spec.hpp"
+#include "ptnet/latency.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/stream.hpp"
 
@@ -31,10 +35,53 @@ struct StreamCli {
   bool raw = false, stats = false;
 };
 
-// Reads up to n bytes (fewer only at end of input); throws Error on a read error.
+// Ctrl-C (SIGINT), SIGTERM or SIGHUP: the stream stops reading, prints its
+// --stats and dies of the signal; a second one ends it at once. The handler
+// wakes the reading thread through a pipe (whichever thread it runs on).
+std::atomic<int> g_stop{0};
+int g_wake[2] = {-1, -1};
+
+extern "C" void request_stop(int sig) {
+  if (g_stop.exchange(sig) != 0) {
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);
+    return;
+  }
+  const char c = 0;
+  [[maybe_unused]] const ssize_t n = ::write(g_wake[1], &c, 1);
+}
+
+void catch_stop_signals() {
+  if (::pipe2(g_wake, O_CLOEXEC | O_NONBLOCK) != 0) throw Error(std::string("pipe: ") + std::strerror(errno));
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;  // ignored (nohup): leave it
+    struct sigaction sa {};
+    sa.sa_handler = request_stop;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(sig, &sa, nullptr);
+  }
+}
+
+// After the stream stopped on a signal: die of it, as an uncaught one would.
+void die_of_stop_signal() {
+  if (const int sig = g_stop.load(); sig != 0) {
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);
+  }
+}
+
+// Reads up to n bytes: fewer only at end of input or once a stop signal
+// came; throws Error on a read error.
 std::size_t read_fully(int fd, char* data, std::size_t n, const std::string& name) {
   std::size_t got = 0;
   while (got < n) {
+    pollfd ready[2] = {{fd, POLLIN, 0}, {g_wake[0], POLLIN, 0}};
+    if (::poll(ready, 2, -1) < 0 && errno != EINTR)
+      throw Error::in(name, std::string("cannot wait for input: ") + std::strerror(errno));
+    if (g_stop.load() != 0) break;
+    if (ready[0].revents == 0) continue;
     const ssize_t r = ::read(fd, data + got, n - got);
     if (r == 0) break;
     if (r < 0) {
@@ -69,8 +116,10 @@ long long read_npy_header(int fd, std::string head, const std::string& name, con
   if (size > head.size()) {
     const std::size_t had = head.size();
     head.resize(size);
-    if (read_fully(fd, head.data() + had, size - had, name) != size - had)
+    if (read_fully(fd, head.data() + had, size - had, name) != size - had) {
+      die_of_stop_signal();
       throw Error::in(name, "npy header truncated");
+    }
   }
   const NpyHeader h = parse_npy_header(head, name);
   if (h.shape.size() != 3 || h.shape[1] != d.mat.rows || h.shape[2] != d.mat.cols) {
@@ -103,6 +152,7 @@ void run(const StreamCli& c) {
     }
   } closer{fd};
   Stream live(c.model, source, target, o);
+  catch_stop_signals();
   const std::size_t cells = std::size_t(live.frame_cells()), frame_bytes = cells * sizeof(float);
 
   // The first bytes tell a .npy stream from raw frames.
@@ -126,11 +176,12 @@ void run(const StreamCli& c) {
               << live.max_output_frames() << " (" << sex_name(source.sex) << " " << source.height_cm << " cm "
               << source.weight_kg << " kg -> " << sex_name(target.sex) << " " << target.height_cm << " cm "
               << target.weight_kg << " kg)\n";
-  std::vector<double> latency_ms;
+  LatencySummary latency;  // with --stats: a fixed footprint however long the stream
   for (long long t = 0; promised < 0 || t < promised; ++t) {
     const std::size_t got =
         pending + read_fully(fd, reinterpret_cast<char*>(frame.data()) + pending, frame_bytes - pending, name);
     pending = 0;
+    if (g_stop.load() != 0) break;  // a partly read frame is dropped
     if (got == 0) {
       if (promised >= 0)
         throw Error::in(name, "the npy header promises " + std::to_string(promised) + " frames, found " +
@@ -144,14 +195,22 @@ void run(const StreamCli& c) {
     const auto t0 = std::chrono::steady_clock::now();
     const int ready = live.push(frame.data(), out.data());
     write_fully(out.data(), std::size_t(ready) * cells);
-    latency_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (c.stats) latency.add(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
-  if (c.stats && !latency_ms.empty()) {
-    std::sort(latency_ms.begin(), latency_ms.end());
-    auto at = [&](double q) { return latency_ms[std::size_t(q * double(latency_ms.size() - 1) + 0.5)]; };
-    std::fprintf(stderr, "stream: %zu frames, per-frame latency p50 %.3f ms, p99 %.3f ms, max %.3f ms\n",
-                 latency_ms.size(), at(0.5), at(0.99), latency_ms.back());
+  if (g_stop.load() == 0) {
+    char extra = 0;
+    if (promised >= 0 && read_fully(fd, &extra, 1, name) > 0 && g_stop.load() == 0)
+      throw Error::in(name, "more data after the " + std::to_string(promised) + " frames the npy header promises");
+    const long long in = live.frames_in(), window = live.max_output_frames();
+    if (in > 0 && in < window)
+      throw Error::in(name, std::to_string(in) + " frame" + (in == 1 ? "" : "s") + ", fewer than the model's window of " +
+                                std::to_string(window) + ": no frame was transferred");
   }
+  if (c.stats && latency.count() > 0)
+    std::fprintf(stderr, "stream: %lld frames, per-frame latency p50 %.3f ms, p99 %.3f ms, max %.3f ms\n",
+                 static_cast<long long>(latency.count()), latency.quantile(0.5), latency.quantile(0.99),
+                 latency.max());
+  die_of_stop_signal();
 }
 
 void setup(CLI::App& app) {
@@ -172,7 +231,9 @@ void setup(CLI::App& app) {
       ->capture_default_str()
       ->check(thread_count(true));
   cmd->add_flag("--raw", c->raw, "Raw network output: skip the model's fitted contact threshold");
-  cmd->add_flag("--stats", c->stats, "At the end, print the per-frame latency (p50, p99) on stderr");
+  cmd->add_flag("--stats", c->stats,
+                "At the end (of the input, or on Ctrl-C / SIGTERM), print the per-frame latency (p50, p99, "
+                "max) on stderr");
   cmd->callback([c] { run(*c); });
 }
 

@@ -2,10 +2,14 @@
 // frame out per frame in, equal to the offline transfer for a one-frame model;
 // a short or malformed input is a one-line error; empty input is a clean exit.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <thread>
 
 #include "cli_test_util.hpp"
 #include "data_test_util.hpp"
@@ -28,6 +32,7 @@ class StreamCliTest : public ::testing::Test {
     TrainOptions o = synth_options(1, Arch::frame, Align::zoom);  // the fast preset's network, small
     o.crop_rows = 0;
     train(src, dir_->file("model"), o);
+    train(synth_source(3, 2, 90), dir_->file("window_model"), synth_options(1));  // a 30-frame window network
     rec_ = new PressureSequence(src.read_all("m2__orig"));
     std::ofstream(dir_->file("rec.f32"), std::ios::binary)
         .write(reinterpret_cast<const char*>(rec_->kpa.data()), std::streamsize(rec_->kpa.size() * sizeof(float)));
@@ -108,4 +113,69 @@ TEST_F(StreamCliTest, MalformedNpyAndNonFiniteFramesAreErrors) {
   r = run_ptnet(stream("--format npy --in '" + dir_->file("rec.f32") + "'"), dir_->file("notnpy"));
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("expected a .npy stream"), std::string::npos) << r.err;
+}
+
+// A window model answers once its window is full: fewer frames than the
+// window transfer nothing, which is an error, not a silent empty output.
+TEST_F(StreamCliTest, FewerFramesThanTheWindowIsAnError) {
+  const std::size_t frame_bytes = std::size_t(rec_->mat.cells()) * sizeof(float);
+  const auto frames = [&](int n) {
+    const std::string path = dir_->file(std::to_string(n) + ".f32");
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(rec_->kpa.data()), std::streamsize(n * frame_bytes));
+    return path;
+  };
+  const std::string window = "--quiet stream --model '" + dir_->file("window_model") +
+                             "' --source female,165,60 --target male,185,95 --in ";
+  RunResult r = run_ptnet(window + "'" + frames(29) + "'", dir_->file("w29"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: " + frames(29) + ": 29 frames, fewer than the model's window of 30: "
+                   "no frame was transferred\n");
+  EXPECT_TRUE(r.out.empty());
+  r = run_ptnet(window + "'" + frames(30) + "'", dir_->file("w30"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.size(), 30 * frame_bytes);
+}
+
+// An .npy stream holds the frames its header announces: more is an error
+// (after the announced ones are answered), as fewer is.
+TEST_F(StreamCliTest, DataBeyondTheNpyHeaderIsAnError) {
+  const std::size_t frame_bytes = std::size_t(rec_->mat.cells()) * sizeof(float);
+  const std::string path = dir_->file("long.npy");
+  PressureSequence two(rec_->mat, 2, rec_->fps);
+  std::copy(rec_->kpa.begin(), rec_->kpa.begin() + std::ptrdiff_t(two.kpa.size()), two.kpa.begin());
+  write_npy_sequence(path, two, true);
+  std::ofstream(path, std::ios::binary | std::ios::app)
+      .write(reinterpret_cast<const char*>(rec_->kpa.data()), std::streamsize(frame_bytes));  // a third frame
+  const RunResult r = run_ptnet(stream("--in '" + path + "'"), dir_->file("long"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: " + path + ": more data after the 2 frames the npy header promises\n");
+  EXPECT_EQ(r.out.size(), 2 * frame_bytes);
+}
+
+// Stopped by Ctrl-C or SIGTERM while its input is still open, the stream
+// prints its --stats for the frames it answered, then dies of the signal.
+TEST_F(StreamCliTest, StatsArePrintedWhenStoppedBySignal) {
+  const std::size_t frame_bytes = std::size_t(rec_->mat.cells()) * sizeof(float);
+  for (int sig : {SIGINT, SIGTERM}) {
+    const std::string fifo = dir_->file("live" + std::to_string(sig)), out = fifo + ".out", err = fifo + ".err";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const pid_t p = spawn_ptnet(stream("--stats --in '" + fifo + "'"), err, "", out);
+    // The writing end, once the stream has opened the reading one (at most 90 s).
+    int writer = -1;
+    for (int i = 0; i < 900 && writer < 0; ++i) {
+      writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+      if (writer < 0) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ASSERT_GE(writer, 0) << slurp(err);
+    ASSERT_EQ(::write(writer, rec_->kpa.data(), 3 * frame_bytes), ssize_t(3 * frame_bytes));
+    for (int i = 0; i < 900 && std::filesystem::file_size(out) < 3 * frame_bytes; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ::kill(p, sig);
+    const int status = wait_within(p, 90);
+    ::close(writer);
+    EXPECT_EQ(status, 128 + sig) << slurp(err);
+    EXPECT_EQ(std::filesystem::file_size(out), 3 * frame_bytes);
+    EXPECT_NE(slurp(err).find("stream: 3 frames, per-frame latency p50 "), std::string::npos)
+        << "signal " << sig << ": " << slurp(err);
+  }
 }
