@@ -24,7 +24,7 @@ namespace ptnet::cli {
 namespace {
 
 // Training threads (fewer on a one-core machine): on an idle 2-core machine
-// 2 threads train the demo 1.7x faster than 1 (docs/model.md, "Threads").
+// 2 threads train the demo 1.5x faster than 1 (docs/model.md, "Threads").
 constexpr int kDemoTrainThreads = 2;
 
 struct DemoCli {

@@ -84,6 +84,22 @@ TEST_F(FrontEnd, WithoutPtnetTorchTheModelCommandsSaySoAndTheOthersRun) {
   EXPECT_FALSE(fs::exists(dir_ / "m"));
 }
 
+// OpenMP threads that wait for each other sleep instead of spinning, unless
+// the user chose (docs/model.md, "Threads"): a stand-in ptnet-torch beside
+// ptnet prints what it was given.
+TEST_F(FrontEnd, PtnetTorchWaitsPassivelyUnlessTheUserChose) {
+  const fs::path ptnet = dir_ / "bin" / "ptnet";
+  fs::create_directories(ptnet.parent_path());
+  fs::copy_file(PTNET_BINARY, ptnet);
+  std::ofstream(dir_ / "bin" / "ptnet-torch") << "#!/bin/sh\necho \"${OMP_WAIT_POLICY:-unset}\"\n";
+  fs::permissions(dir_ / "bin" / "ptnet-torch", fs::perms::owner_all);
+  const std::string clean = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT";
+  EXPECT_EQ(run(ptnet, "train", clean).out, "PASSIVE\n");
+  EXPECT_EQ(run(ptnet, "train", clean + " OMP_WAIT_POLICY=ACTIVE").out, "ACTIVE\n");
+  EXPECT_EQ(run(ptnet, "train", clean + " GOMP_SPINCOUNT=10000").out, "unset\n");
+  EXPECT_EQ(run(ptnet, "bodies --seed 1 --out b.csv", clean).out.find("PASSIVE"), std::string::npos);
+}
+
 // Installed (cmake/install.cmake), ptnet is PREFIX/bin/ptnet and ptnet-torch
 // PREFIX/libexec/ptnet/ptnet-torch.
 TEST_F(FrontEnd, InstalledPtnetFindsPtnetTorchInLibexec) {
