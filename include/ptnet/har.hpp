@@ -227,6 +227,10 @@ struct ClassifierOptions {
   int hidden = 64;              // width of the hidden fully connected layer
   std::uint64_t seed = 1;       // weights and shuffling
   std::string device = "cpu";   // "cpu", "cuda", "cuda:1"
+  // Cross entropy weighted by n / (C x count of the class), so that a rare
+  // class weighs as much as a common one (macro F1 scores them equally).
+  bool balanced = false;
+  int threads = 0;              // torch::set_num_threads when > 0 (0: leave LibTorch's setting)
 };
 
 // Two conv blocks (3x3 conv, BatchNorm, ReLU, 2x2 max pool), adaptive average

@@ -45,10 +45,13 @@ struct ClipSource {
   GenerateOptions procedural;    // used when path is empty
   SequenceMeta meta;             // motion_id, performer, category, take, source
                                  // (name and body_id are filled per body)
+  // Only frames [first_frame, end_frame) of the clip at the dataset's frame
+  // rate (end_frame 0: to the end), cut after loading (load_clip).
+  int first_frame = 0, end_frame = 0;
 };
 
 // One row of a clips CSV (docs/formats.md): columns file, subject, category,
-// take (required); metres_per_unit and up used when present; other columns
+// take (required); metres_per_unit, up and activity used when present; other columns
 // (trial, rig, fps, frames) ignored. `file` is relative to the CSV's folder.
 struct ClipRow {
   std::string file;      // resolved path
@@ -57,6 +60,7 @@ struct ClipRow {
   int take = 1;
   double metres_per_unit = 0;  // 0: not given
   std::string up;              // "" : not given
+  std::string activity;        // fine activity label, lower case ("" : no activity column)
   long line = 0;               // line in the CSV, for messages
 };
 
@@ -95,7 +99,8 @@ std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds
                                        double fps = 30);
 
 // Loads (BVH) or generates (procedural, at the performer's own height) one
-// clip at `fps`. Throws Error naming the file.
+// clip at `fps`, cut to its frame span. Throws Error naming the file (or a
+// span beyond the clip's frames).
 Motion load_clip(const ClipSource& clip, double fps);
 
 struct SimulateDatasetOptions {

@@ -41,7 +41,8 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
   const std::string columns = "file,subject,category,take[,metres_per_unit,up]";
   const int c_file = t.required("file", columns), c_subject = t.required("subject", columns),
             c_category = t.required("category", columns), c_take = t.required("take", columns),
-            c_mpu = t.column("metres_per_unit"), c_up = t.column("up");
+            c_mpu = t.column("metres_per_unit"), c_up = t.column("up"),
+            c_activity = t.column("activity");
   std::vector<ClipRow> rows;
   for (const CsvRow& row : t.rows) {
     const long number = row.line;
@@ -76,6 +77,7 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
       if (end != mpu.c_str() + mpu.size() || !(r.metres_per_unit > 0) || !std::isfinite(r.metres_per_unit))
         throw Error::at(path, number, "metres_per_unit as a positive number", escaped(mpu));
     }
+    r.activity = lower(get(c_activity));
     r.up = lower(get(c_up));
     if (!r.up.empty() && r.up != "y" && r.up != "z") throw Error::at(path, number, "up y or z", escaped(get(c_up)));
     std::error_code ec;
@@ -206,19 +208,35 @@ std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds
   return clips;
 }
 
+namespace {
+
+// Frames [first_frame, end_frame) of a loaded clip (ClipSource).
+Motion clip_span(Motion m, const ClipSource& clip) {
+  if (clip.first_frame == 0 && clip.end_frame == 0) return m;
+  const std::string& where = clip.path.empty() ? clip.meta.motion_id : clip.path;
+  const int end = clip.end_frame > 0 ? clip.end_frame : m.size();
+  if (clip.first_frame < 0 || end > m.size() || clip.first_frame >= end)
+    throw Error::in(where, "expected a frame span within 0-" + std::to_string(m.size()) + ", found " +
+                               std::to_string(clip.first_frame) + "-" + std::to_string(end));
+  m.frames = std::vector<Pose>(m.frames.begin() + clip.first_frame, m.frames.begin() + end);
+  return m;
+}
+
+}  // namespace
+
 Motion load_clip(const ClipSource& clip, double fps) {
   if (clip.path.empty()) {
     GenerateOptions g = clip.procedural;
     g.fps = fps;
     Motion m = generate_motion(g);
     m.name = clip.meta.motion_id;
-    return m;
+    return clip_span(std::move(m), clip);
   }
   MotionOptions o = clip.motion;
   o.fps = fps;
   Motion m = load_motion(clip.path, o);
   if (m.size() == 0) throw Error::in(clip.path, "no frames");
-  return m;
+  return clip_span(std::move(m), clip);
 }
 
 }  // namespace ptnet

@@ -84,6 +84,7 @@ struct WindowClassifier::Impl {
   Impl(int ch, int r, int c, int k, const ClassifierOptions& o)
       : channels(ch), rows(r), cols(c), classes(k), options(o), device(parse_device(o.device)),
         net(nullptr) {
+    if (o.threads > 0) torch::set_num_threads(o.threads);
     torch::manual_seed(o.seed);
     net = Net(ch, k, o);
     net->to(device);
@@ -141,6 +142,14 @@ double WindowClassifier::train(const PreparedWindows& inputs, const std::vector<
   }
   torch::Tensor y = torch::from_blob(const_cast<int*>(labels.data()), {n}, torch::kInt32)
                         .to(torch::kInt64);
+  torch::Tensor weight;  // undefined: unweighted
+  if (m.options.balanced) {
+    std::vector<float> count(std::size_t(m.classes), 0.0f);
+    for (int l : labels) count[std::size_t(l)] += 1;
+    std::vector<float> w(count.size(), 0.0f);
+    for (std::size_t c = 0; c < count.size(); ++c) w[c] = count[c] > 0 ? float(n) / (m.classes * count[c]) : 0.0f;
+    weight = torch::tensor(w).to(m.device);
+  }
   torch::optim::Adam opt(m.net->parameters(), torch::optim::AdamOptions(m.options.learning_rate)
                                                   .weight_decay(m.options.weight_decay));
   std::mt19937_64 rng(m.options.seed);
@@ -160,7 +169,8 @@ double WindowClassifier::train(const PreparedWindows& inputs, const std::vector<
       torch::Tensor xb = ((x.index_select(0, idx) - m.mean) / m.scale).to(m.device);
       torch::Tensor yb = y.index_select(0, idx).to(m.device);
       opt.zero_grad();
-      torch::Tensor loss = torch::nn::functional::cross_entropy(m.net->forward(xb), yb);
+      torch::Tensor loss = torch::nn::functional::cross_entropy(
+          m.net->forward(xb), yb, torch::nn::functional::CrossEntropyFuncOptions().weight(weight));
       loss.backward();
       opt.step();
       total += loss.item<double>();

@@ -177,6 +177,55 @@ std::vector<float> standin_gain_map(const MatSpec& mat, const StandinOptions& o)
   return gain;
 }
 
+SimOptions standin_sim_options(const StandinOptions& o) {
+  SimOptions sim;
+  sim.sensor.crosstalk = o.crosstalk;
+  sim.sensor.noise_sd_kpa = o.noise_sd_kpa;
+  sim.placement = parse_placement(o.placement);
+  sim.seed = o.seed;
+  return sim;
+}
+
+namespace {
+
+// The sensor's activation threshold, saturation and ADC step on one reading.
+float read_out(double v, const SensorModel& sm) {
+  if (v < sm.threshold_kpa) v = 0;
+  v = std::min(v, sm.saturation_kpa);
+  if (sm.quantum_kpa > 0) v = std::round(v / sm.quantum_kpa) * sm.quantum_kpa;
+  return float(v);
+}
+
+void check_gain(const PressureSequence& seq, const std::vector<float>& gain) {
+  if (gain.size() != std::size_t(seq.mat.cells()))
+    throw Error("standin: gain map of " + std::to_string(gain.size()) + " cells for a mat of " +
+                std::to_string(seq.mat.cells()));
+}
+
+}  // namespace
+
+void degrade(PressureSequence& seq, const std::vector<float>& gain, const SensorModel& sm) {
+  check_gain(seq, gain);
+  for (int t = 0; t < seq.frames(); ++t) {
+    float* f = seq.frame(t);
+    for (int i = 0; i < seq.mat.cells(); ++i) f[i] = read_out(double(f[i]) * gain[i], sm);
+  }
+}
+
+void read_again(PressureSequence& seq, const std::vector<float>& gain, const SensorModel& sm,
+                std::uint64_t seed) {
+  check_gain(seq, gain);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, sm.noise_sd_kpa);
+  for (int t = 0; t < seq.frames(); ++t) {
+    float* f = seq.frame(t);
+    for (int i = 0; i < seq.mat.cells(); ++i) {
+      const double n = sm.noise_sd_kpa > 0 ? noise(rng) : 0.0;
+      f[i] = gain[i] == 0 ? 0.0f : read_out(double(f[i]) + n, sm);
+    }
+  }
+}
+
 // The one mechanism for both kinds of subjects: plan -> simulate -> degrade
 // -> write.
 void write_standin(const std::string& path, const StandinOptions& o, bool force) {
@@ -186,11 +235,7 @@ void write_standin(const std::string& path, const StandinOptions& o, bool force)
   };
   StandinPlan plan = o.mocap.empty() ? procedural_plan(o) : mocap_plan(o);
 
-  SimOptions sim;
-  sim.sensor.crosstalk = o.crosstalk;
-  sim.sensor.noise_sd_kpa = o.noise_sd_kpa;
-  sim.placement = parse_placement(o.placement);
-  sim.seed = o.seed;
+  SimOptions sim = standin_sim_options(o);
   const std::vector<float> gain = standin_gain_map(sim.mat, o);
   std::vector<Body> bodies;
   for (const auto& b : plan.bodies) bodies.emplace_back(b);
@@ -201,21 +246,7 @@ void write_standin(const std::string& path, const StandinOptions& o, bool force)
   say("standin: simulating " + std::to_string(jobs.size()) + " clips of " +
       std::to_string(plan.bodies.size()) + " subjects" + (o.mocap.empty() ? "" : " (mocap " + o.mocap + ")"));
   std::vector<PressureSequence> seqs = simulate_many(jobs, sim, o.threads);
-
-  // The degraded sensor: per-cell gain, dead cells, then the activation
-  // threshold, saturation and ADC step of the simulator's sensor again.
-  const SensorModel& sm = sim.sensor;
-  for (PressureSequence& seq : seqs)
-    for (int t = 0; t < seq.frames(); ++t) {
-      float* f = seq.frame(t);
-      for (int i = 0; i < seq.mat.cells(); ++i) {
-        double v = double(f[i]) * gain[i];
-        if (v < sm.threshold_kpa) v = 0;
-        v = std::min(v, sm.saturation_kpa);
-        if (sm.quantum_kpa > 0) v = std::round(v / sm.quantum_kpa) * sm.quantum_kpa;
-        f[i] = float(v);
-      }
-    }
+  for (PressureSequence& seq : seqs) degrade(seq, gain, sim.sensor);
 
   DatasetInfo info;
   info.mat = sim.mat;

@@ -1,0 +1,358 @@
+// The body-shift HAR benchmark's run (ptnet/har_bench.hpp, docs/har_bench.md):
+// populations simulated and read by the degraded mat, windows cut by the
+// split, the deployment bodies' training windows synthesised per source,
+// classifiers trained per source and scored on the deployment test windows.
+//
+// Dimension legend: N windows, T frames, H x W mat cells, C classes,
+// R recorded bodies, D deployment bodies.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "bench_internal.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
+#include "ptnet/sim.hpp"
+#include "ptnet/strings.hpp"
+#include "standin.hpp"
+
+namespace ptnet::har {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void say(const BenchOptions& o, const std::string& line) {
+  if (o.progress) o.progress(progress_line("har-bench", line));
+}
+
+const std::vector<std::string>& known_syntheses() {
+  static const std::vector<std::string> k = {"model", "model-mean", "copy", "weight-ratio", "body-scale"};
+  return k;
+}
+
+void check_options(const BenchOptions& o, const TransferFn& transfer) {
+  if (o.runs < 1) throw Error("har-bench: runs must be at least 1, found " + std::to_string(o.runs));
+  if (o.stride < 1) throw Error("har-bench: stride must be at least 1, found " + std::to_string(o.stride));
+  if (o.recorded_bodies < 1 || o.bodies_per_band < 1)
+    throw Error("har-bench: need at least 1 recorded body and 1 body per deployment band");
+  if (o.deployment_bands.empty()) throw Error("har-bench: no deployment band given");
+  for (const std::string& b : o.deployment_bands) {
+    body_band(b);
+    if (b == "mid") throw Error("har-bench: band mid is the recorded population, not a deployment band");
+  }
+  std::vector<std::string> seen;
+  for (const std::string& s : o.syntheses) {
+    if (std::find(known_syntheses().begin(), known_syntheses().end(), s) == known_syntheses().end())
+      throw Error("har-bench: unknown training source '" + s + "' (sources: " + join(known_syntheses()) + ")");
+    if (std::count(seen.begin(), seen.end(), s)) throw Error("har-bench: training source '" + s + "' given twice");
+    seen.push_back(s);
+    if ((s == "model" || s == "model-mean") && !transfer)
+      throw Error("har-bench: source '" + s + "' needs a transfer model");
+  }
+}
+
+// Every clip on every body of a population, read by the degraded mat:
+// [clip][body] sequences [T, H, W].
+std::vector<std::vector<PressureSequence>> simulate_population(const BenchClips& clips,
+                                                               const std::vector<BodySpec>& bodies,
+                                                               const SimOptions& sim, const std::vector<float>& gain,
+                                                               const BenchOptions& o) {
+  std::vector<Body> b(bodies.begin(), bodies.end());
+  const std::size_t nb = bodies.size();
+  std::vector<Motion> copies(clips.clips.size() * nb);
+  std::vector<MotionPlacement> placements(copies.size());
+  std::vector<SimJob> jobs;
+  for (std::size_t c = 0; c < clips.clips.size(); ++c) {
+    const Motion& source = clips.clips[c].motion;
+    const MotionPlacement place = place_motion(source, sim);
+    for (std::size_t j = 0; j < nb; ++j) {
+      const std::size_t k = c * nb + j;
+      copies[k] = retarget(source, bodies[j].height_cm);
+      placements[k] = place.scaled(retarget_scale(source, bodies[j].height_cm));
+      const std::string name = clips.clips[c].source.meta.motion_id + "__" + bodies[j].id;
+      jobs.push_back({&copies[k], &b[j], sequence_seed(o.seed, name), &placements[k], {}});
+    }
+  }
+  std::vector<PressureSequence> seqs = simulate_many(jobs, sim, o.threads);
+  std::vector<std::vector<PressureSequence>> out(clips.clips.size());
+  for (std::size_t k = 0; k < seqs.size(); ++k) {
+    degrade(seqs[k], gain, sim.sensor);
+    out[k / nb].push_back(std::move(seqs[k]));
+  }
+  return out;
+}
+
+// Windows with their labels and deployment body.
+struct Windows {
+  PreparedWindows inputs;                     // [N, B, H', W']
+  std::vector<int> activity, pseudo;          // [N] (pseudo: filled later)
+  std::vector<int> body;                      // [N] deployment body index (-1: recorded)
+  std::vector<int> source;                    // [N] synthetic: index of the recorded window it came from
+  std::vector<std::vector<double>> features;  // [N][F] real windows only
+  std::vector<std::string> subject;           // [N] body id (real windows)
+  int count() const { return int(activity.size()); }
+};
+
+// Windows of frames [begin, end) of one sequence, every `stride` frames.
+void add_windows(const PressureSequence& seq, int begin, int end, const BenchOptions& o, int label, int body,
+                 const std::string& subject, bool features, Windows& w) {
+  for (int t = begin; t + kWindowFrames <= end; t += o.stride) {
+    const float* x = seq.frame(t);
+    prepare_window(x, kWindowFrames, seq.mat, o.input, w.inputs);
+    w.activity.push_back(label);
+    w.body.push_back(body);
+    if (features) {
+      w.features.push_back(window_feature_vector(x, kWindowFrames, seq.mat, seq.fps));
+      w.subject.push_back(subject);
+    }
+  }
+}
+
+// The first `frames` frames of a sequence.
+PressureSequence head(const PressureSequence& s, int frames) {
+  PressureSequence out(s.mat, frames, s.fps);
+  std::copy(s.kpa.begin(), s.kpa.begin() + std::ptrdiff_t(out.kpa.size()), out.kpa.begin());
+  return out;
+}
+
+// Pseudo labels of all real windows (recorded, oracle, test; the paper's
+// features, per-subject normalisation, robust standardisation, PCA 4, mean
+// shift). Returns the cluster count (< 2: no pseudo table).
+int fit_pseudo_labels(std::vector<Windows*> sets, const BenchOptions& o, std::string& summary) {
+  int n = 0;
+  for (Windows* s : sets) n += s->count();
+  const int nf = int(feature_names().size());
+  Eigen::MatrixXd f(n, nf);
+  std::vector<std::string> subject;
+  int i = 0;
+  for (Windows* s : sets)
+    for (int k = 0; k < s->count(); ++k, ++i) {
+      for (int j = 0; j < nf; ++j) f(i, j) = s->features[std::size_t(k)][std::size_t(j)];
+      subject.push_back(s->subject[std::size_t(k)]);
+    }
+  normalise_per_subject(f, subject);
+  robust_standardise(f);
+  const Pca pca = Pca::fit(f, std::min(4, nf));
+  const MeanShiftResult ms = mean_shift(pca.transform(f), {});
+  i = 0;
+  for (Windows* s : sets) {
+    s->pseudo.assign(ms.labels.begin() + i, ms.labels.begin() + i + s->count());
+    i += s->count();
+  }
+  summary = std::to_string(ms.clusters()) + " clusters, bandwidth " + fixed_text(ms.bandwidth) + ", silhouette " +
+            fixed_text(ms.silhouette);
+  return ms.clusters();
+}
+
+double mean_of(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / double(v.size());
+}
+
+double sd_of(const std::vector<double>& v) {
+  if (v.size() < 2) return 0.0;
+  const double m = mean_of(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / double(v.size() - 1));
+}
+
+// One training source: the deployment bodies' training windows it adds to
+// the recorded ones (none for "recorded").
+struct Synthesis {
+  std::string name;
+  Windows extra;
+};
+
+BenchSource score(const Synthesis& s, const Windows& recorded, const Windows& test, bool pseudo, int classes,
+                  int deployment_bodies, const BenchOptions& o) {
+  PreparedWindows inputs = recorded.inputs;
+  std::vector<int> labels = pseudo ? recorded.pseudo : recorded.activity;
+  if (s.extra.count() > 0) {
+    inputs.append(s.extra.inputs);
+    const std::vector<int>& more = pseudo ? s.extra.pseudo : s.extra.activity;
+    labels.insert(labels.end(), more.begin(), more.end());
+  }
+  const std::vector<int>& truth = pseudo ? test.pseudo : test.activity;
+  BenchSource r;
+  r.name = s.name;
+  r.train_windows = inputs.count();
+  r.class_f1.assign(std::size_t(classes), 0.0);
+  r.body_f1.assign(std::size_t(deployment_bodies), {});
+  r.confusion = Eigen::MatrixXi::Zero(classes, classes);
+  for (int run = 0; run < o.runs; ++run) {
+    ClassifierOptions co = o.classifier;
+    co.seed = o.classifier.seed + std::uint64_t(run);
+    WindowClassifier net(inputs.channels, inputs.rows, inputs.cols, classes, co);
+    net.train(inputs, labels);
+    const std::vector<int> predicted = net.predict(test.inputs);
+    const ClassificationReport rep = classification_report(truth, predicted, classes);
+    r.macro_f1.push_back(rep.macro_f1);
+    r.confusion += rep.confusion;
+    for (int c = 0; c < classes; ++c) r.class_f1[std::size_t(c)] += rep.f1[std::size_t(c)] / o.runs;
+    for (int d = 0; d < deployment_bodies; ++d) {
+      std::vector<int> t, p;
+      for (int i = 0; i < test.count(); ++i)
+        if (test.body[std::size_t(i)] == d) {
+          t.push_back(truth[std::size_t(i)]);
+          p.push_back(predicted[std::size_t(i)]);
+        }
+      r.body_f1[std::size_t(d)].push_back(t.empty() ? 0.0 : classification_report(t, p, classes).macro_f1);
+    }
+    say(o, "har-bench: [" + std::string(pseudo ? "pseudo" : "activity") + ", " + s.name + " run " +
+               std::to_string(run + 1) + "/" + std::to_string(o.runs) + "] macro F1 " + fixed_text(rep.macro_f1));
+  }
+  r.mean = mean_of(r.macro_f1);
+  r.sd = sd_of(r.macro_f1);
+  return r;
+}
+
+BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& recorded, const Windows& test,
+                       bool pseudo, const std::vector<std::string>& classes, int deployment_bodies,
+                       const BenchOptions& o) {
+  BenchTable t;
+  t.labels = pseudo ? "pseudo" : "activity";
+  t.classes = classes;
+  const int nc = int(classes.size());
+  t.test_support.assign(std::size_t(nc), 0);
+  for (int l : pseudo ? test.pseudo : test.activity) ++t.test_support[std::size_t(l)];
+  for (const Synthesis& s : sources)
+    t.sources.push_back(score(s, recorded, test, pseudo, nc, deployment_bodies, o));
+  const double floor = t.sources.front().mean, ceiling = t.sources.back().mean;
+  t.gap = ceiling - floor;
+  for (std::size_t i = 0; i < t.sources.size(); ++i)
+    t.sources[i].gap_closed = i == 0 || i + 1 == t.sources.size() || t.gap == 0
+                                  ? std::numeric_limits<double>::quiet_NaN()
+                                  : (t.sources[i].mean - floor) / t.gap;
+  return t;
+}
+
+}  // namespace
+
+BenchResult run_bench(const BenchOptions& o, const TransferFn& transfer) {
+  const auto t0 = Clock::now();
+  check_options(o, transfer);
+  BenchResult r;
+  r.mocap = o.mocap.empty() ? "procedural" : o.mocap;
+  r.runs = o.runs;
+  const BenchClips clips = load_bench_clips(o);
+  if (!o.model_data.empty()) check_bench_training_set(o.model_data, clips);
+  r.activities = clips.activities;
+  r.left_out = clips.left_out;
+  r.clips = int(clips.clips.size());
+  r.recorded = band_bodies(body_band("mid"), o.recorded_bodies, o.seed, "rec", "original");
+  for (const std::string& band : o.deployment_bands)
+    for (BodySpec b : band_bodies(body_band(band), o.bodies_per_band, o.seed, band + "-", "original"))
+      r.deployment.push_back(b);
+  const int R = int(r.recorded.size()), D = int(r.deployment.size());
+
+  // 1. both populations, read by the degraded mat.
+  SimOptions sim = standin_sim_options(o.sensor);
+  const std::vector<float> gain = standin_gain_map(sim.mat, o.sensor);
+  say(o, "har-bench: simulating " + std::to_string(r.clips) + " clips (" + join(r.activities) + ") on " +
+             std::to_string(R) + " recorded and " + std::to_string(D) + " deployment bodies");
+  const auto rec = simulate_population(clips, r.recorded, sim, gain, o);
+  const auto dep = simulate_population(clips, r.deployment, sim, gain, o);
+  r.simulate_seconds = since(t0);
+
+  // 2. windows: recorded training parts; deployment training parts (the
+  // oracle) and test parts.
+  Windows recorded, oracle, test;
+  std::vector<std::vector<int>> first_window(clips.clips.size(), std::vector<int>(std::size_t(R), 0));
+  for (std::size_t c = 0; c < clips.clips.size(); ++c) {
+    const BenchClip& clip = clips.clips[c];
+    for (int j = 0; j < R; ++j) {
+      first_window[c][std::size_t(j)] = recorded.count();
+      add_windows(rec[c][std::size_t(j)], 0, clip.split.train_end, o, clip.label, -1, r.recorded[std::size_t(j)].id,
+                  true, recorded);
+    }
+    for (int d = 0; d < D; ++d) {
+      const PressureSequence& s = dep[c][std::size_t(d)];
+      add_windows(s, 0, clip.split.train_end, o, clip.label, d, r.deployment[std::size_t(d)].id, true, oracle);
+      add_windows(s, clip.split.test_begin, clip.split.frames, o, clip.label, d, r.deployment[std::size_t(d)].id,
+                  true, test);
+    }
+  }
+  r.recorded_windows = recorded.count();
+  r.test_windows = test.count();
+
+  // 3. syntheses: clip c's training part of recorded body (c + d) mod R
+  // made into deployment body d's, as many windows as the oracle's.
+  const auto t1 = Clock::now();
+  std::vector<Synthesis> sources;
+  sources.push_back({"recorded", {}});
+  for (const std::string& name : o.syntheses) sources.push_back({name, {}});
+  const bool transfers = std::any_of(o.syntheses.begin(), o.syntheses.end(),
+                                     [](const std::string& s) { return s == "model" || s == "model-mean"; });
+  for (std::size_t c = 0; c < clips.clips.size(); ++c) {
+    const BenchClip& clip = clips.clips[c];
+    for (int d = 0; d < D; ++d) {
+      const int j = int((c + std::size_t(d)) % std::size_t(R));
+      const BodySpec &from = r.recorded[std::size_t(j)], &to = r.deployment[std::size_t(d)];
+      const PressureSequence part = head(rec[c][std::size_t(j)], clip.split.train_end);  // never the test part
+      PressureSequence transferred;
+      if (transfers) {
+        transferred = transfer(part, from, to);
+        if (!(transferred.mat == part.mat) || transferred.frames() != part.frames())
+          throw Error("har-bench: the transfer of " + clip.source.meta.motion_id + " returned " +
+                      std::to_string(transferred.frames()) + " frames, expected " + std::to_string(part.frames()));
+      }
+      for (std::size_t k = 1; k < sources.size(); ++k) {
+        const std::string& name = sources[k].name;
+        PressureSequence s;
+        if (name == "model") {
+          s = transferred;
+          read_again(s, gain, sim.sensor, sequence_seed(o.seed, clip.source.meta.motion_id + "__" + to.id + "/read"));
+        } else if (name == "model-mean") {
+          s = transferred;
+        } else if (name == "copy") {
+          s = copy_baseline(part);
+        } else if (name == "weight-ratio") {
+          s = weight_ratio_baseline(part, from.weight_kg, to.weight_kg);
+        } else {
+          s = body_scale_baseline(part, from, to);
+        }
+        Windows& w = sources[k].extra;
+        const int before = w.count();
+        add_windows(s, 0, clip.split.train_end, o, clip.label, d, to.id, false, w);
+        for (int i = 0; i < w.count() - before; ++i) w.source.push_back(first_window[c][std::size_t(j)] + i);
+      }
+    }
+    if (transfers && ((c + 1) % 10 == 0 || c + 1 == clips.clips.size()))
+      say(o, "har-bench: transferred " + std::to_string(c + 1) + "/" + std::to_string(clips.clips.size()) +
+                 " clips onto " + std::to_string(D) + " deployment bodies");
+  }
+  sources.push_back({"oracle", oracle});
+  r.synthetic_windows = oracle.count();
+  r.transfer_seconds = since(t1);
+
+  // 4. classifiers per label kind and source.
+  const auto t2 = Clock::now();
+  say(o, "har-bench: " + std::to_string(r.recorded_windows) + " recorded training windows, " +
+             std::to_string(r.synthetic_windows) + " per synthesis, " + std::to_string(r.test_windows) +
+             " test windows; " + std::to_string(o.runs) + " classifiers per source");
+  r.tables.push_back(score_table(sources, recorded, test, false, r.activities, D, o));
+  if (o.pseudo_labels) {
+    std::string summary;
+    const int k = fit_pseudo_labels({&recorded, &sources.back().extra, &test}, o, summary);
+    say(o, "har-bench: pseudo labels: " + summary);
+    if (k < 2) {
+      r.left_out.push_back("pseudo labels: mean shift found a single cluster");
+    } else {
+      for (std::size_t s = 1; s + 1 < sources.size(); ++s)
+        for (int src : sources[s].extra.source) sources[s].extra.pseudo.push_back(recorded.pseudo[std::size_t(src)]);
+      std::vector<std::string> names;
+      for (int c = 0; c < k; ++c) names.push_back("cluster " + std::to_string(c));
+      r.tables.push_back(score_table(sources, recorded, test, true, names, D, o));
+    }
+  }
+  r.classify_seconds = since(t2);
+  r.seconds = since(t0);
+  return r;
+}
+
+}  // namespace ptnet::har
