@@ -26,7 +26,7 @@ struct HarBenchCli {
   std::string model, training_set, out = "har-bench";
   int training_bodies = 24;
   int transfer_stride = 15;
-  int threads = 1;
+  int threads = 2;
   bool no_pseudo = false, force = false;
 };
 
@@ -98,10 +98,11 @@ void setup(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));
   s->add_option("--syntheses", c->syntheses,
-                "Training sources besides recorded and oracle: model, model-mean, copy, weight-ratio, body-scale")
+                "Training sources besides recorded and oracle: model, model-mean, copy, weight-ratio, body-scale, "
+                "body-scale-read")
       ->capture_default_str();
   s->add_option("--deployment-bands", c->bands,
-                "Deployment populations: small, large, short-light, tall-heavy, light, heavy, short, tall "
+                "Deployment populations: small, large, xsmall, xlarge, short-light, tall-heavy, light, heavy, short, tall "
                 "(docs/har_bench.md)")
       ->capture_default_str();
   s->add_option("--activities", c->activities, "Comma-separated activities (default: every one with a usable clip)");
@@ -132,9 +133,14 @@ void setup(CLI::App& app) {
   s->add_option("--transfer-stride", c->transfer_stride, "Frames between the model's windows (1-30)")
       ->capture_default_str()
       ->check(CLI::Range(1, 30));
-  s->add_option("--threads", c->threads, "LibTorch threads of the transfer and the classifiers")
+  s->add_option("--threads", c->threads, "LibTorch threads of the transfer (and of the classifiers with --workers 1)")
       ->capture_default_str()
       ->check(ptnet::cli::thread_count(false));
+  s->add_option("--workers", c->o.workers,
+                "Classifiers trained at once, one LibTorch thread each (0: one per core); the same result as "
+                "--workers 1 --threads 1")
+      ->capture_default_str()
+      ->check(ptnet::cli::thread_count(true));
   s->add_flag("--no-pseudo", c->no_pseudo, "Skip the second table (mean-shift pseudo labels)");
   s->add_option("--out", c->out, "Output folder (results.json, index.html, f1.svg)")->capture_default_str();
   s->add_flag("--force", c->force, "Overwrite existing outputs");

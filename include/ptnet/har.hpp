@@ -231,6 +231,9 @@ struct ClassifierOptions {
   // class weighs as much as a common one (macro F1 scores them equally).
   bool balanced = false;
   int threads = 0;              // torch::set_num_threads when > 0 (0: leave LibTorch's setting)
+  // Learning rate annealed along a half cosine from learning_rate to 0 over
+  // the epochs (else constant): the last epochs settle instead of jumping.
+  bool cosine = false;
 };
 
 // Two conv blocks (3x3 conv, BatchNorm, ReLU, 2x2 max pool), adaptive average

@@ -6,10 +6,13 @@
 // Dimension legend: N windows, T frames, H x W mat cells, C classes,
 // R recorded bodies, D deployment bodies.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <mutex>
+#include <thread>
 
 #include "bench_internal.hpp"
 #include "ptnet/error.hpp"
@@ -29,7 +32,8 @@ void say(const BenchOptions& o, const std::string& line) {
 }
 
 const std::vector<std::string>& known_syntheses() {
-  static const std::vector<std::string> k = {"model", "model-mean", "copy", "weight-ratio", "body-scale"};
+  static const std::vector<std::string> k = {"model",        "model-mean", "copy",
+                                             "weight-ratio", "body-scale", "body-scale-read"};
   return k;
 }
 
@@ -168,60 +172,110 @@ struct Synthesis {
   Windows extra;
 };
 
-BenchSource score(const Synthesis& s, const Windows& recorded, const Windows& test, bool pseudo, int classes,
-                  int deployment_bodies, const BenchOptions& o) {
-  PreparedWindows inputs = recorded.inputs;
-  std::vector<int> labels = pseudo ? recorded.pseudo : recorded.activity;
-  if (s.extra.count() > 0) {
-    inputs.append(s.extra.inputs);
-    const std::vector<int>& more = pseudo ? s.extra.pseudo : s.extra.activity;
-    labels.insert(labels.end(), more.begin(), more.end());
+// One classifier's outcome on the test windows.
+struct RunScore {
+  ClassificationReport report;
+  std::vector<double> body_f1;  // [D]
+};
+
+RunScore score_run(const PreparedWindows& inputs, const std::vector<int>& labels, const Windows& test,
+                   const std::vector<int>& truth, int classes, int deployment_bodies, const ClassifierOptions& co) {
+  WindowClassifier net(inputs.channels, inputs.rows, inputs.cols, classes, co);
+  net.train(inputs, labels);
+  const std::vector<int> predicted = net.predict(test.inputs);
+  RunScore r{classification_report(truth, predicted, classes), {}};
+  for (int d = 0; d < deployment_bodies; ++d) {
+    std::vector<int> t, p;
+    for (int i = 0; i < test.count(); ++i)
+      if (test.body[std::size_t(i)] == d) {
+        t.push_back(truth[std::size_t(i)]);
+        p.push_back(predicted[std::size_t(i)]);
+      }
+    r.body_f1.push_back(t.empty() ? 0.0 : classification_report(t, p, classes).macro_f1);
   }
-  const std::vector<int>& truth = pseudo ? test.pseudo : test.activity;
-  BenchSource r;
-  r.name = s.name;
-  r.train_windows = inputs.count();
-  r.class_f1.assign(std::size_t(classes), 0.0);
-  r.body_f1.assign(std::size_t(deployment_bodies), {});
-  r.confusion = Eigen::MatrixXi::Zero(classes, classes);
-  for (int run = 0; run < o.runs; ++run) {
-    ClassifierOptions co = o.classifier;
-    co.seed = o.classifier.seed + std::uint64_t(run);
-    WindowClassifier net(inputs.channels, inputs.rows, inputs.cols, classes, co);
-    net.train(inputs, labels);
-    const std::vector<int> predicted = net.predict(test.inputs);
-    const ClassificationReport rep = classification_report(truth, predicted, classes);
-    r.macro_f1.push_back(rep.macro_f1);
-    r.confusion += rep.confusion;
-    for (int c = 0; c < classes; ++c) r.class_f1[std::size_t(c)] += rep.f1[std::size_t(c)] / o.runs;
-    for (int d = 0; d < deployment_bodies; ++d) {
-      std::vector<int> t, p;
-      for (int i = 0; i < test.count(); ++i)
-        if (test.body[std::size_t(i)] == d) {
-          t.push_back(truth[std::size_t(i)]);
-          p.push_back(predicted[std::size_t(i)]);
-        }
-      r.body_f1[std::size_t(d)].push_back(t.empty() ? 0.0 : classification_report(t, p, classes).macro_f1);
-    }
-    say(o, "har-bench: [" + std::string(pseudo ? "pseudo" : "activity") + ", " + s.name + " run " +
-               std::to_string(run + 1) + "/" + std::to_string(o.runs) + "] macro F1 " + fixed_text(rep.macro_f1));
-  }
-  r.mean = mean_of(r.macro_f1);
-  r.sd = sd_of(r.macro_f1);
   return r;
 }
 
+// Runs task(i) for i in [0, n) on `workers` threads; the first error is rethrown.
+void run_tasks(int n, int workers, const std::function<void(int)>& task) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&] {
+    for (int i = next++; i < n; i = next++) {
+      try {
+        task(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = n;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < std::min(workers, n); ++w) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+// Every source's classifiers (options.runs each, options.workers at once),
+// scored on the test windows.
 BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& recorded, const Windows& test,
                        bool pseudo, const std::vector<std::string>& classes, int deployment_bodies,
                        const BenchOptions& o) {
   BenchTable t;
   t.labels = pseudo ? "pseudo" : "activity";
   t.classes = classes;
-  const int nc = int(classes.size());
+  const int nc = int(classes.size()), ns = int(sources.size());
+  const std::vector<int>& truth = pseudo ? test.pseudo : test.activity;
   t.test_support.assign(std::size_t(nc), 0);
-  for (int l : pseudo ? test.pseudo : test.activity) ++t.test_support[std::size_t(l)];
-  for (const Synthesis& s : sources)
-    t.sources.push_back(score(s, recorded, test, pseudo, nc, deployment_bodies, o));
+  for (int l : truth) ++t.test_support[std::size_t(l)];
+
+  std::vector<PreparedWindows> inputs(std::size_t(ns), recorded.inputs);
+  std::vector<std::vector<int>> labels(std::size_t(ns), pseudo ? recorded.pseudo : recorded.activity);
+  for (int s = 0; s < ns; ++s) {
+    const Windows& extra = sources[std::size_t(s)].extra;
+    if (extra.count() == 0) continue;
+    inputs[std::size_t(s)].append(extra.inputs);
+    const std::vector<int>& more = pseudo ? extra.pseudo : extra.activity;
+    labels[std::size_t(s)].insert(labels[std::size_t(s)].end(), more.begin(), more.end());
+  }
+  const int workers = o.workers > 0 ? o.workers : int(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<RunScore> runs(std::size_t(ns * o.runs));
+  std::mutex say_mutex;
+  int done = 0;
+  run_tasks(ns * o.runs, workers, [&](int i) {
+    const int s = i / o.runs, run = i % o.runs;
+    ClassifierOptions co = o.classifier;
+    co.seed = o.classifier.seed + std::uint64_t(run);
+    if (workers > 1) co.threads = 1;
+    runs[std::size_t(i)] = score_run(inputs[std::size_t(s)], labels[std::size_t(s)], test, truth, nc,
+                                     deployment_bodies, co);
+    const std::lock_guard<std::mutex> lock(say_mutex);
+    say(o, "har-bench: [" + t.labels + " labels " + std::to_string(++done) + "/" + std::to_string(ns * o.runs) +
+               "] " + sources[std::size_t(s)].name + " run " + std::to_string(run + 1) + ": macro F1 " +
+               fixed_text(runs[std::size_t(i)].report.macro_f1));
+  });
+
+  for (int s = 0; s < ns; ++s) {
+    BenchSource r;
+    r.name = sources[std::size_t(s)].name;
+    r.train_windows = inputs[std::size_t(s)].count();
+    r.class_f1.assign(std::size_t(nc), 0.0);
+    r.body_f1.assign(std::size_t(deployment_bodies), {});
+    r.confusion = Eigen::MatrixXi::Zero(nc, nc);
+    for (int run = 0; run < o.runs; ++run) {
+      const RunScore& x = runs[std::size_t(s * o.runs + run)];
+      r.macro_f1.push_back(x.report.macro_f1);
+      r.confusion += x.report.confusion;
+      for (int c = 0; c < nc; ++c) r.class_f1[std::size_t(c)] += x.report.f1[std::size_t(c)] / o.runs;
+      for (int d = 0; d < deployment_bodies; ++d) r.body_f1[std::size_t(d)].push_back(x.body_f1[std::size_t(d)]);
+    }
+    r.mean = mean_of(r.macro_f1);
+    r.sd = sd_of(r.macro_f1);
+    t.sources.push_back(r);
+  }
   const double floor = t.sources.front().mean, ceiling = t.sources.back().mean;
   t.gap = ceiling - floor;
   for (std::size_t i = 0; i < t.sources.size(); ++i)
@@ -315,6 +369,8 @@ BenchResult run_bench(const BenchOptions& o, const TransferFn& transfer) {
           s = weight_ratio_baseline(part, from.weight_kg, to.weight_kg);
         } else {
           s = body_scale_baseline(part, from, to);
+          if (name == "body-scale-read")
+            read_again(s, gain, sim.sensor, sequence_seed(o.seed, clip.source.meta.motion_id + "__" + to.id + "/read"));
         }
         Windows& w = sources[k].extra;
         const int before = w.count();

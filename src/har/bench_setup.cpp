@@ -26,10 +26,11 @@ const std::vector<BodyBand>& body_bands() {
   // outside it in size, build or both; all covers every band.
   static const std::vector<BodyBand> bands = {
       {"mid", 160, 178, 20, 25},          {"small", 145, 157, 17, 19.5},
-      {"large", 182, 198, 27, 32},        {"short-light", 152, 159, 18.5, 20},
+      {"large", 182, 198, 27, 32},        {"xsmall", 136, 146, 16, 18},
+      {"xlarge", 192, 204, 30, 35},       {"short-light", 152, 159, 18.5, 20},
       {"tall-heavy", 179, 186, 25, 27.5}, {"light", 160, 178, 16.5, 19},
       {"heavy", 160, 178, 27, 33},        {"short", 145, 157, 20, 25},
-      {"tall", 182, 198, 20, 25},         {"all", 142, 200, 16.5, 33}};
+      {"tall", 182, 198, 20, 25},         {"all", 134, 206, 16, 35}};
   return bands;
 }
 

@@ -3,9 +3,12 @@
 //
 // Dimension legend: N windows, B time blocks (input channels), H x W pooled
 // cells, C classes.
+#include <ATen/CPUGeneratorImpl.h>
 #include <torch/torch.h>
 
 #include <algorithm>
+#include <cmath>
+#include <mutex>
 #include <numeric>
 #include <random>
 
@@ -27,7 +30,6 @@ struct NetImpl : torch::nn::Module {
         bn2(o.conv2),
         pool(torch::nn::AdaptiveAvgPool2dOptions({kPooledRows, kPooledCols})),
         fc1(o.conv2 * kPooledRows * kPooledCols, o.hidden),
-        drop(kDropout),
         fc2(o.hidden, classes) {
     register_module("conv1", conv1);
     register_module("bn1", bn1);
@@ -35,18 +37,24 @@ struct NetImpl : torch::nn::Module {
     register_module("bn2", bn2);
     register_module("pool", pool);
     register_module("fc1", fc1);
-    register_module("drop", drop);
     register_module("fc2", fc2);
   }
 
-  // x [N, B, H, W] -> logits [N, C]
-  torch::Tensor forward(torch::Tensor x) {
+  // x [N, B, H, W] -> logits [N, C]; dropout (training only) drawn from
+  // `dropout`, the classifier's own generator, so that classifiers trained
+  // at once on several threads stay deterministic.
+  torch::Tensor forward(torch::Tensor x, at::Generator* dropout = nullptr) {
     x = torch::relu(bn1(conv1(x)));
     if (x.size(2) >= 2 && x.size(3) >= 2) x = torch::max_pool2d(x, 2);
     x = torch::relu(bn2(conv2(x)));
     if (x.size(2) >= 2 && x.size(3) >= 2) x = torch::max_pool2d(x, 2);
     x = pool(x).flatten(1);
-    x = drop(torch::relu(fc1(x)));
+    x = torch::relu(fc1(x));
+    if (is_training() && dropout) {
+      const torch::Tensor keep =
+          at::bernoulli(torch::full(x.sizes(), 1 - kDropout, torch::kFloat32), *dropout).to(x.device());
+      x = x * keep / (1 - kDropout);
+    }
     return fc2(x);
   }
 
@@ -56,7 +64,6 @@ struct NetImpl : torch::nn::Module {
   torch::nn::BatchNorm2d bn2;
   torch::nn::AdaptiveAvgPool2d pool;
   torch::nn::Linear fc1;
-  torch::nn::Dropout drop;
   torch::nn::Linear fc2;
 };
 TORCH_MODULE(Net);
@@ -81,13 +88,24 @@ struct WindowClassifier::Impl {
   Net net;
   float mean = 0, scale = 1;  // input standardisation from the training set
 
+  at::Generator dropout;
+
   Impl(int ch, int r, int c, int k, const ClassifierOptions& o)
       : channels(ch), rows(r), cols(c), classes(k), options(o), device(parse_device(o.device)),
-        net(nullptr) {
-    if (o.threads > 0) torch::set_num_threads(o.threads);
+        net(nullptr), dropout(at::make_generator<at::CPUGeneratorImpl>(o.seed)) {
+    // The initial weights come from LibTorch's global generator: seeded and
+    // drawn under one lock, the same whichever thread builds the classifier.
+    static std::mutex init;
+    const std::lock_guard<std::mutex> lock(init);
+    use_threads();
     torch::manual_seed(o.seed);
     net = Net(ch, k, o);
     net->to(device);
+  }
+
+  // LibTorch's CPU threads for the calling thread (OpenMP keeps the count per thread).
+  void use_threads() const {
+    if (options.threads > 0) torch::set_num_threads(options.threads);
   }
 
   void check(const PreparedWindows& in) const {
@@ -133,7 +151,8 @@ double WindowClassifier::train(const PreparedWindows& inputs, const std::vector<
     if (l < 0 || l >= m.classes)
       throw Error("har: label " + std::to_string(l) + " outside 0.." + std::to_string(m.classes - 1));
 
-  torch::manual_seed(m.options.seed);
+  m.use_threads();
+  m.dropout.set_current_seed(m.options.seed);
   torch::Tensor x = m.view(inputs);
   {
     torch::NoGradGuard g;
@@ -159,6 +178,10 @@ double WindowClassifier::train(const PreparedWindows& inputs, const std::vector<
   double last = 0;
   m.net->train();
   for (int epoch = 0; epoch < m.options.epochs; ++epoch) {
+    if (m.options.cosine) {
+      const double lr = m.options.learning_rate * 0.5 * (1 + std::cos(M_PI * epoch / m.options.epochs));
+      for (auto& group : opt.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+    }
     std::shuffle(order.begin(), order.end(), rng);
     double total = 0;
     int steps = 0;
@@ -170,7 +193,7 @@ double WindowClassifier::train(const PreparedWindows& inputs, const std::vector<
       torch::Tensor yb = y.index_select(0, idx).to(m.device);
       opt.zero_grad();
       torch::Tensor loss = torch::nn::functional::cross_entropy(
-          m.net->forward(xb), yb, torch::nn::functional::CrossEntropyFuncOptions().weight(weight));
+          m.net->forward(xb, &m.dropout), yb, torch::nn::functional::CrossEntropyFuncOptions().weight(weight));
       loss.backward();
       opt.step();
       total += loss.item<double>();
@@ -189,6 +212,7 @@ std::vector<int> WindowClassifier::predict(const PreparedWindows& inputs) const 
   std::vector<int> out(n, 0);
   if (n == 0) return out;
   torch::NoGradGuard g;
+  m.use_threads();
   m.net->eval();
   torch::Tensor x = m.view(inputs);
   constexpr int kChunk = 512;  // windows per forward pass
