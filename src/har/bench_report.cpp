@@ -112,7 +112,8 @@ std::vector<std::string> write_bench_report(const std::string& out_dir, const Be
     << " clips of " << r.activities.size() << " activities (" << html_escape(join(r.activities)) << "). "
     << r.recorded_windows << " recorded training windows, " << r.synthetic_windows
     << " added per training source, " << r.test_windows << " test windows of the deployment bodies; " << r.runs
-    << " seeded classifiers per source. Every number: <a href=\"results.json\">results.json</a>.</p>\n";
+    << " seeded classifiers per source. Every number: <a href=\"results.json\">results.json</a>.</p>\n"
+    << "<img src=\"f1.svg\" alt=\"macro F1 per training source with its spread\">\n";
   BarChart chart;
   chart.title = "Macro F1 on the deployment bodies (whiskers: +- 1 sd over runs)";
   chart.y_label = "macro F1";
@@ -158,7 +159,9 @@ std::vector<std::string> write_bench_report(const std::string& out_dir, const Be
     }
     b << "</table>\n<h3>Confusion (summed over runs; rows true, columns predicted)</h3>\n<div class=\"charts\">\n";
     for (const BenchSource& s : t.sources) {
-      b << "<table class=\"confusion\"><caption>" << html_escape(s.name) << "</caption>\n";
+      b << "<table class=\"confusion\"><caption>" << html_escape(s.name) << "</caption>\n<tr><th>true \\ predicted</th>";
+      for (const std::string& c : t.classes) b << "<th>" << html_escape(c) << "</th>";
+      b << "</tr>\n";
       for (int i = 0; i < s.confusion.rows(); ++i) {
         b << "<tr><th>" << html_escape(t.classes[std::size_t(i)]) << "</th>";
         const double total = std::max(1, s.confusion.row(i).sum());
@@ -173,7 +176,6 @@ std::vector<std::string> write_bench_report(const std::string& out_dir, const Be
     }
     b << "</div>\n";
   }
-  b << "<img src=\"f1.svg\" alt=\"macro F1 per training source with its spread\">\n";
   b << "<h2>Bodies</h2>\n<p>Recorded: ";
   for (const BodySpec& x : r.recorded) b << html_escape(body_text(x)) << "; ";
   b << "</p>\n<p>Deployment: ";
