@@ -5,9 +5,7 @@ torch.nn.Modules whose state_dict() keys and shapes are ptnet's, so that the
 weights move both ways:
 
     import torch, ptnet_torch as pt
-    cfg = pt.read_config("model/config.json")        # architecture + normalisation
-    net = pt.PressureTransferNet(cfg).eval()
-    net.load_state_dict(torch.load("weights.pt"))   # ptnet export --model model/ --out weights.pt
+    net, cfg = pt.load("model/", "weights.pt")      # ptnet export --model model/ --out weights.pt
     out = pt.transfer(net, cfg, pressure, source=("female", 165, 60), target=("male", 185, 95))
     pt.save_state_dict(net, "tuned.pt")             # ptnet import-weights --weights tuned.pt --config model/ --out tuned/
 
@@ -205,12 +203,112 @@ def save_state_dict(net, path):
 
 
 def load(model_dir, weights):
-    """The module of a ptnet model folder with the weights of `weights` (a path
-    written by ptnet export, or a state dict), in eval mode; and its config."""
+    """The module of a ptnet model folder with the weights of `weights`, in
+    eval mode; and its config.
+
+    `weights` is a path written by ptnet export (or export_weights) from this
+    folder, read with torch.load(weights_only=True) (no pickled code runs) and
+    checked against the digest config.json records for model.pt (the weights
+    ptnet trained: another file, or the same one changed, is refused); or a
+    state dict already in memory (e.g. tuned weights: torch.load(path,
+    weights_only=True)), whose values are checked but not its digest. Raises
+    ValueError naming the file (or "state dict") and the tensor: a missing or
+    unexpected tensor or a wrong shape, a non-finite value, a negative
+    BatchNorm running variance, a contact_floor outside [0, 1] or a negative
+    batch count (check_state_dict)."""
     cfg = read_config(model_dir)
     net = PressureTransferNet(cfg)
-    net.load_state_dict(torch.load(weights) if isinstance(weights, (str, os.PathLike)) else weights)
+    from_file = isinstance(weights, (str, os.PathLike))
+    path = os.fspath(weights) if from_file else "state dict"
+    sd = read_state_dict(path) if from_file else weights
+    check_state_dict(sd, net, path)
+    net.load_state_dict(sd)
+    if from_file:
+        recorded = cfg.get("integrity", {}).get("model.pt", "")
+        found = weights_digest(net)
+        if recorded and found != recorded:  # older folders record none (as ptnet does)
+            config_path = os.path.join(model_dir, "config.json") if os.path.isdir(model_dir) else os.fspath(model_dir)
+            raise ValueError(f"{path}: weights do not match the digest in {config_path} ({found}, recorded "
+                             f"{recorded}): not exported from this model folder, or changed since")
     return net.eval(), cfg
+
+
+def read_state_dict(path):
+    """The dict of tensors of a file ptnet export wrote, by torch.load with
+    weights_only=True: tensors, dicts, lists and numbers are all the
+    unpickler builds, so an object whose __reduce__ calls os.system is
+    refused (ValueError naming the file) instead of run."""
+    import pickle
+    try:
+        sd = torch.load(path, map_location="cpu", weights_only=True)
+    except pickle.UnpicklingError as e:
+        why = str(e).rsplit("WeightsUnpickler error: ", 1)[-1].strip().splitlines()[-1]
+        raise ValueError(f"{path}: not a plain dict of tensors (refused by torch.load(weights_only=True): {why}; "
+                         f"a file exported by an older ptnet must be exported again)") from None
+    if not isinstance(sd, dict):
+        raise ValueError(f"{path}: expected a dict of tensors, found {type(sd).__name__}")
+    return sd
+
+
+# Largest contact_floor: the floor is the mat's minimum reading over the
+# pressure scale (normalisation.min_reading_kpa / pressure_scale_kpa), so it
+# lies in [0, 1]; above 1 every contact cell would read more than the scale.
+MAX_CONTACT_FLOOR = 1.0
+
+
+def check_state_dict(sd, net, where):
+    """Raises ValueError "WHERE: ..." naming the tensor unless `sd` has
+    exactly net's tensor names and shapes, every value finite, every
+    BatchNorm running_var >= 0, every num_batches_tracked >= 0 and
+    contact_floor in [0, MAX_CONTACT_FLOOR]."""
+    expected = net.state_dict()
+    for name in sd:
+        if name not in expected:
+            raise ValueError(f"{where}: unexpected tensor {name!r} (not in the {net.arch} model)")
+    for name, want in expected.items():
+        if name not in sd:
+            raise ValueError(f"{where}: missing tensor {name!r} (saved from another architecture than {net.arch}?)")
+        t = sd[name]
+        if not isinstance(t, torch.Tensor):
+            raise ValueError(f"{where}: {name!r} is not a tensor, found {type(t).__name__}")
+        if t.shape != want.shape:
+            raise ValueError(f"{where}: tensor {name!r} has shape {list(t.shape)}, the model expects "
+                             f"{list(want.shape)}")
+        if t.is_floating_point() and not bool(torch.isfinite(t).all()):
+            raise ValueError(f"{where}: tensor {name!r} has non-finite values (NaN or Inf)")
+        if name.endswith("running_var") and bool((t < 0).any()):
+            raise ValueError(f"{where}: tensor {name!r} has a negative BatchNorm variance "
+                             f"({float(t.min()):g})")
+        if name.endswith("num_batches_tracked") and bool((t < 0).any()):
+            raise ValueError(f"{where}: tensor {name!r} is negative ({int(t.min())})")
+        if name == "contact_floor" and not 0 <= float(t) <= MAX_CONTACT_FLOOR:
+            raise ValueError(f"{where}: tensor {name!r} is {float(t):g}, expected a value in "
+                             f"[0, {MAX_CONTACT_FLOOR:g}] (normalised pressure)")
+
+
+def weights_digest(net):
+    """The digest ptnet records in config.json for model.pt
+    (src/model/integrity.cpp): FNV-1a 64 over every parameter, then every
+    buffer, in registration order: the name and a NUL, the shape (int64
+    each) and the float32 values; a buffer that is not floating point (the
+    batch counts), its name and raw bytes. Pure Python: about 85 ns a byte
+    (a second for the paper's 14 MB of weights)."""
+    h, prime, mask = 0xCBF29CE484222325, 0x100000001B3, (1 << 64) - 1
+
+    def add(data):
+        nonlocal h
+        for b in data:
+            h = ((h ^ b) * prime) & mask
+
+    items = [(n, t, True) for n, t in net.named_parameters()] + [(n, t, False) for n, t in net.named_buffers()]
+    for name, t, is_parameter in items:
+        add(name.encode() + b"\0")
+        t = t.detach().cpu().contiguous()
+        if is_parameter or t.is_floating_point():
+            t = t.to(torch.float32)
+            add(np.asarray(t.shape, dtype="<i8").tobytes())
+        add(t.numpy().tobytes())
+    return f"{h:016x}"
 
 
 # ------------------------------------------------------------ around the network

@@ -3,9 +3,12 @@
 // original; bad files and folders are one-line errors. (The PyTorch side:
 // python/tests/test_torch.py, test_roundtrip.py.)
 #include <gtest/gtest.h>
+#include <torch/csrc/jit/serialization/pickle.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
 
 #include "ptnet/error.hpp"
 #include "ptnet/model_config.hpp"
@@ -77,6 +80,54 @@ TEST_F(StateDictTest, WrongArchitectureOrFileIsOneLine) {
             std::string::npos);
   EXPECT_NE(error_of([&] { export_state_dict((dir_ / "missing").string(), none, false); }).find("missing"),
             std::string::npos);
+}
+
+TEST_F(StateDictTest, ExportHoldsNoGlobalTheWeightsOnlyUnpicklerRefuses) {
+  // PyTorch's torch.load(weights_only=True) builds only tensors, storages,
+  // dicts and numbers; torch::pickle_save's torch.jit._pickle.restore_type_tag
+  // made it refuse ptnet's own export (python/tests/test_torch_load.py loads it).
+  for (const char* model : {"faithful", "frame"}) {
+    SCOPED_TRACE(model);
+    const std::string pt = (dir_ / (std::string(model) + "_plain.pt")).string();
+    export_state_dict((dir_ / model).string(), pt, /*force=*/true);
+    std::ifstream in(pt, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(bytes.find("_rebuild_tensor_v2"), std::string::npos);  // data.pkl is stored, not deflated
+    EXPECT_EQ(bytes.find("torch.jit"), std::string::npos);
+    EXPECT_EQ(bytes.find("restore_type_tag"), std::string::npos);
+  }
+}
+
+TEST_F(StateDictTest, ImportRefusesValuesNoTrainingGives) {
+  struct Case {
+    const char* model;
+    const char* tensor;
+    double value;
+    const char* says;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Case& c : {Case{"faithful", "bn2.running_mean", nan, "has non-finite values"},
+                        Case{"faithful", "dbn3.running_var", -0.25, "has a negative BatchNorm variance"},
+                        Case{"faithful", "bn1.num_batches_tracked", -1, "is negative"},
+                        Case{"frame", "frame.norm0.running_var", -1, "has a negative BatchNorm variance"},
+                        Case{"frame", "contact_floor", 1e30, "is 1e+30, expected a value in [0, 1]"},
+                        Case{"frame", "contact_floor", -0.5, "expected a value in [0, 1]"}}) {
+    SCOPED_TRACE(c.tensor);
+    const std::string pt = (dir_ / (std::string(c.model) + "_values.pt")).string();
+    export_state_dict((dir_ / c.model).string(), pt, /*force=*/true);
+    std::ifstream in(pt, std::ios::binary);
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto dict = torch::jit::pickle_load(bytes).toGenericDict();
+    dict.at(c.tensor).toTensor().fill_(c.value);
+    const std::vector<char> bad = torch::jit::pickle_save(dict);  // the tagged form: import reads it too
+    const std::string bad_path = (dir_ / "bad_values.pt").string();
+    std::ofstream(bad_path, std::ios::binary).write(bad.data(), std::streamsize(bad.size()));
+    const std::string out = (dir_ / "bad_values").string();
+    const std::string e = error_of([&] { import_state_dict(bad_path, (dir_ / c.model).string(), out, true); });
+    EXPECT_EQ(e.rfind(bad_path + ": tensor \"" + c.tensor + "\" ", 0), 0u) << e;
+    EXPECT_NE(e.find(c.says), std::string::npos) << e;
+    EXPECT_FALSE(fs::exists(fs::path(out) / "model.pt"));
+  }
 }
 
 }  // namespace

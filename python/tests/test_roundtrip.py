@@ -64,7 +64,7 @@ class RoundTripTest(unittest.TestCase):
             with self.subTest(model=model):
                 path = os.path.join(self.dir, model + "_again.pt")
                 ptnet.export_weights(os.path.join(self.dir, model), path, force=True)
-                back = torch.load(path)
+                back = torch.load(path, weights_only=True)
                 sd = self.nets[model][0].state_dict()
                 self.assertEqual(sorted(back), sorted(sd))
                 for k, v in sd.items():

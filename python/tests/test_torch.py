@@ -38,7 +38,7 @@ class TorchTest(unittest.TestCase):
     def test_state_dict_has_ptnets_names(self):
         for model in MODELS:
             with self.subTest(model=model):
-                sd = self.torch.load(self.weights[model])
+                sd = self.torch.load(self.weights[model], weights_only=True)
                 self.assertIsInstance(sd, dict)
                 net = self.pt.PressureTransferNet(self.pt.read_config(fixture(model)))
                 self.assertEqual(sorted(sd), sorted(net.state_dict()))

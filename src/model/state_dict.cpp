@@ -2,7 +2,10 @@
 // translation unit of the model stage.
 #include "ptnet/state_dict.hpp"
 
+#include <caffe2/serialize/inline_container.h>
+#include <torch/csrc/jit/serialization/export.h>
 #include <torch/csrc/jit/serialization/pickle.h>
+#include <torch/csrc/jit/serialization/pickler.h>
 
 #include <filesystem>
 #include <fstream>
@@ -13,6 +16,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/zip_check.hpp"
 
 namespace ptnet {
@@ -32,6 +36,30 @@ std::string shape_text(c10::IntArrayRef sizes) {
   std::ostringstream s;
   s << sizes;
   return s.str();
+}
+
+// What torch.save writes for `dict` (a zip archive: data.pkl and one record
+// per tensor), in the form PyTorch's torch.load(weights_only=True) accepts:
+// torch::pickle_save wraps typed containers in the global
+// torch.jit._pickle.restore_type_tag, which the weights-only unpickler
+// refuses; this is the same pickle without that tag (the Pickler's
+// tag_aggregates off). torch::pickle_load reads both.
+std::vector<char> save_plain_dict(const c10::Dict<std::string, torch::Tensor>& dict) {
+  std::vector<char> pickle;
+  torch::jit::Pickler pickler([&](const char* p, std::size_t n) { pickle.insert(pickle.end(), p, p + n); },
+                              /*tensor_table=*/nullptr, /*type_renamer=*/nullptr, /*memoized_class_types=*/nullptr,
+                              /*get_tensor_id=*/nullptr, /*tag_aggregates=*/false);
+  pickler.protocol();
+  pickler.pushIValue(dict);
+  pickler.stop();
+  std::vector<char> zip;
+  caffe2::serialize::PyTorchStreamWriter writer([&](const void* p, std::size_t n) {
+    zip.insert(zip.end(), static_cast<const char*>(p), static_cast<const char*>(p) + n);
+    return n;
+  });
+  torch::jit::writeArchiveAndTensors("data", pickle.data(), pickle.size(), pickler.tensorData(), writer);
+  writer.writeEndOfFile();
+  return zip;
 }
 
 // The tensors of a torch.save'd dict, by name; throws Error naming `path`.
@@ -56,6 +84,25 @@ c10::Dict<c10::IValue, c10::IValue> read_dict(const std::string& path) {
   return value.toGenericDict();
 }
 
+// Values no training produces (python/ptnet_torch.py check_state_dict holds
+// the same rules): NaN or Inf anywhere, a negative BatchNorm running
+// variance or batch count, a contact floor outside [0, 1] (the mat's minimum
+// reading over the pressure scale).
+void check_weight_values(const PressureTransferNet& net, const std::string& path) {
+  for (const auto& [name, t] : named_tensors(net)) {
+    const auto tensor = [&](const std::string& problem) {
+      return Error::in(path, "tensor \"" + name + "\" " + problem);
+    };
+    if (t.is_floating_point() && !torch::isfinite(t).all().item<bool>())
+      throw tensor("has non-finite values (NaN or Inf)");
+    const bool count = ends_with(name, "num_batches_tracked"), variance = ends_with(name, "running_var");
+    if ((count || variance) && (t < 0).any().item<bool>())
+      throw tensor(variance ? "has a negative BatchNorm variance" : "is negative");
+    if (name == "contact_floor" && !(t.item<double>() >= 0 && t.item<double>() <= 1))
+      throw tensor("is " + number_text(t.item<double>()) + ", expected a value in [0, 1] (normalised pressure)");
+  }
+}
+
 }  // namespace
 
 void export_state_dict(const std::string& model_dir, const std::string& out_path, bool force) {
@@ -70,7 +117,7 @@ void export_state_dict(const std::string& model_dir, const std::string& out_path
   check_weights_digest(*net, recorded_digest(dir, "model.pt"), weights_path, config_path);
   c10::Dict<std::string, torch::Tensor> dict;
   for (const auto& [name, tensor] : named_tensors(net)) dict.insert(name, tensor.detach().cpu().contiguous());
-  const std::vector<char> bytes = torch::pickle_save(dict);
+  const std::vector<char> bytes = save_plain_dict(dict);
   write_text_file(out_path, std::string(bytes.begin(), bytes.end()), force);
 }
 
@@ -102,8 +149,7 @@ void import_state_dict(const std::string& weights_path, const std::string& confi
       if (!known.count(key)) throw Error::in(weights_path, "unexpected tensor \"" + key + "\" (not in the " +
                                                                std::string(arch_name(dir.model.arch)) + " model)");
     }
-    for (const auto& p : net->parameters())
-      if (!torch::isfinite(p).all().item<bool>()) throw Error::in(weights_path, "non-finite weights (NaN or Inf)");
+    check_weight_values(net, weights_path);
   }
   std::error_code ec;
   fs::create_directories(out_dir, ec);
