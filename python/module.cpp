@@ -75,11 +75,20 @@ BodySpec body_argument(const py::handle& value, const std::string& what) {
     if (items.size() != 3)
       throw Error(what + ": expected (sex, height_cm, weight_kg) like (\"female\", 165, 60), found " +
                   std::to_string(items.size()) + " values");
+    // A number (int, float, numpy scalar); a string ("165") is not one.
+    const auto number = [&](const py::handle& item, const char* field) {
+      try {
+        return item.cast<double>();
+      } catch (const py::cast_error&) {
+      }
+      throw Error(what + ": " + field + ": expected a number, found " +
+                  std::string(py::str(item.get_type().attr("__name__"))) + " " + std::string(py::repr(item)));
+    };
     BodySpec b;
     b.id = what;
     b.sex = parse_sex(py::str(items[0]));
-    b.height_cm = items[1].cast<double>();
-    b.weight_kg = items[2].cast<double>();
+    b.height_cm = number(items[1], "height_cm");
+    b.weight_kg = number(items[2], "weight_kg");
     return b;
   }
   try {

@@ -7,6 +7,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/csv.hpp"
 #include "ptnet/eval.hpp"
+#include "data_test_util.hpp"
 
 namespace ptnet {
 namespace {
@@ -109,6 +110,34 @@ TEST(Metrics, BodyScaleBaselineZoomsAboutTheCentreAndKeepsForceRatio) {
 
 TEST(Metrics, ShapeMismatchIsAnError) {
   EXPECT_THROW(compare(blank(1), blank(2), {}), Error);
+}
+
+// Each bad argument is named with its value (issue 24, probe defect 11): a
+// NaN threshold made binary R^2 1, a NaN pitch "shapes differ (1 x 4 x 3 vs
+// 1 x 4 x 3)", a negative pitch passed.
+TEST(Metrics, BadArgumentsAreNamedWithTheirValue) {
+  using testing_util::error_of;
+  const float p[2] = {0, 2}, t[2] = {0, 2};
+  const double nan = std::nan("");
+  EXPECT_EQ(error_of([&] { binary_r2(p, t, 2, nan); }),
+            "binary_r2: threshold_kpa: expected a finite number >= 0, found nan");
+  EXPECT_EQ(error_of([&] { contact_iou(p, t, 2, -1); }),
+            "contact_iou: threshold_kpa: expected a finite number >= 0, found -1");
+  for (const double pitch : {nan, -1.0, 0.0}) {
+    PressureSequence a = blank(1);
+    a.mat.pitch_m = pitch;
+    EXPECT_EQ(error_of([&] { compare(a, a, {}); }),
+              "compare: pitch_m: expected a cell size > 0 m, found " + number_text(pitch));
+  }
+  PressureSequence b = blank(1);
+  b.mat.pitch_m = 0.03;
+  EXPECT_EQ(error_of([&] { compare(blank(1), b, {}); }), "compare: mats differ in pitch_m (0.02 vs 0.03 m)");
+  EXPECT_EQ(error_of([&] { compare(blank(1), blank(1), MetricOptions{nan}); }),
+            "binary_r2: threshold_kpa: expected a finite number >= 0, found nan");
+  EXPECT_EQ(error_of([&] { zoom_about_centre(blank(1), 1.1, nan); }),
+            "zoom: gain: expected a finite number >= 0, found nan");
+  EXPECT_EQ(error_of([&] { zoom_about_centre(blank(1), nan, 1.0); }),
+            "zoom: scale: expected a finite number > 0, found nan");
 }
 
 EvalRow row(const std::string& method, const std::string& category, int take, double rmse_kpa,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "data_test_util.hpp"
 #include "motion_gait_util.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
@@ -86,6 +87,15 @@ TEST(Generate, RejectsBadOptions) {
   o.performer = 1;
   o.fps = 0;
   EXPECT_THROW(generate_motion(o), Error);
+  o.fps = 30;
+  // height_cm 0 is the performer's own; anything else outside [50, 250] was
+  // once taken for 0 (issue 24, probe defect 11).
+  for (const double h : {-5.0, 20.0, 300.0, std::nan("")}) {
+    o.height_cm = h;
+    EXPECT_EQ(testing_util::error_of([&] { generate_motion(o); }),
+              "generate_motion: height_cm: expected 0 (the performer's own) or a height in [50, 250] cm, found " +
+                  number_text(h));
+  }
 }
 
 // Walking: contacts alternate left/right at 1.6-2.0 steps/s; a stance foot

@@ -69,6 +69,44 @@ class ErrorTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             ptnet.simulate(ptnet.generate_motion(seconds=1), ptnet.Body("male", 180, 80), placement="floating")
 
+    def test_bad_arguments_name_themselves_and_their_value(self):
+        # Issue 24, probe defect 11: a string height raised RuntimeError
+        # "Unable to cast", gain=nan reported the scale, pitch_m=nan said
+        # "shapes differ (40 x 80 x 28 vs 40 x 80 x 28)", pitch_m=-1 passed,
+        # threshold_kpa=nan gave binary R^2 1.0, height_cm=-5 passed.
+        nan = float("nan")
+        seq = np.zeros((40, 80, 28), np.float32)
+        seq[:, 10:20, 5:9] = 30.0
+        net = ptnet.Transfer(fixture("faithful"))
+        for field, body, found in (("height_cm", ("female", "165", 60), "str '165'"),
+                                   ("weight_kg", ("female", 165, "heavy"), "str 'heavy'")):
+            self.assertRaisesLine(ValueError, f"source body: {field}: expected a number, found {found}",
+                                  net.run, seq, source=body, target=("male", 180, 80))
+        self.assertRaisesLine(ValueError, "target body: height_cm: expected a number, found NoneType None",
+                              ptnet.body_scale_baseline, seq, source=("female", 165, 60), target=("male", None, 80))
+        self.assertRaisesLine(ValueError, "zoom: gain: expected a finite number >= 0, found nan",
+                              ptnet.zoom_about_centre, seq, 1.1, gain=nan)
+        self.assertRaisesLine(ValueError, "zoom: gain: expected a finite number >= 0, found -2",
+                              ptnet.zoom_about_centre, seq, 1.1, gain=-2)
+        self.assertRaisesLine(ValueError, "zoom: scale: expected a finite number > 0, found inf",
+                              ptnet.zoom_about_centre, seq, float("inf"))
+        for pitch in (nan, -1.0, 0.0):
+            self.assertRaisesLine(ValueError, f"compare: pitch_m: expected a cell size > 0 m, found {pitch:g}",
+                                  ptnet.compare, seq, seq, pitch_m=pitch)
+        for name in ("binary_r2", "contact_iou"):
+            for threshold in (nan, -0.5):
+                self.assertRaisesLine(ValueError, f"{name}: threshold_kpa: expected a finite number >= 0, found "
+                                      f"{threshold:g}", getattr(ptnet, name), seq, seq, threshold_kpa=threshold)
+        self.assertRaisesLine(ValueError, "binary_r2: threshold_kpa: expected a finite number >= 0, found nan",
+                              ptnet.compare, seq, seq, threshold_kpa=nan)
+        for height in (-5.0, 20.0, nan):
+            self.assertRaisesLine(ValueError, "generate_motion: height_cm: expected 0 (the performer's own) or a "
+                                  f"height in [50, 250] cm, found {height:g}", ptnet.generate_motion, seconds=1,
+                                  height_cm=height)
+        # The good values still work.
+        self.assertEqual(ptnet.compare(seq, seq)["binary_r2"], 1.0)
+        self.assertEqual(len(ptnet.generate_motion(seconds=1, height_cm=0)), 30)
+
 
 if __name__ == "__main__":
     unittest.main()

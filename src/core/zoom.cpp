@@ -7,8 +7,10 @@
 namespace ptnet {
 
 void zoom_frames(const float* in, float* out, int frames, int rows, int cols, double scale, double gain) {
-  if (!(scale > 0) || !std::isfinite(scale) || !std::isfinite(gain))
-    throw Error("zoom: scale must be > 0 and finite, found " + number_text(scale));
+  if (!(scale > 0) || !std::isfinite(scale))
+    throw Error("zoom: scale: expected a finite number > 0, found " + number_text(scale));
+  if (!(gain >= 0) || !std::isfinite(gain))  // a pressure gain: negative would give negative pressure
+    throw Error("zoom: gain: expected a finite number >= 0, found " + number_text(gain));
   // Output cell (r, c) samples the input at centre + (r - centre) / scale, in
   // cell-centre coordinates; bilinear weights per row and column, precomputed.
   const double cr = 0.5 * (rows - 1), cc = 0.5 * (cols - 1);

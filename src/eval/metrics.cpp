@@ -16,7 +16,18 @@ double rmse(const float* predicted, const float* truth, std::size_t n) {
   return std::sqrt(sse / double(n));
 }
 
+namespace {
+// A binarisation threshold: NaN would compare false everywhere (every cell
+// "no contact", R^2 1) and a negative one marks every cell as contact.
+void check_threshold(double threshold_kpa, const char* what) {
+  if (!(threshold_kpa >= 0) || !std::isfinite(threshold_kpa))
+    throw Error(std::string(what) + ": threshold_kpa: expected a finite number >= 0, found " +
+                number_text(threshold_kpa));
+}
+}  // namespace
+
 double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
+  check_threshold(threshold_kpa, "binary_r2");
   if (n == 0) return 1;
   std::size_t ones = 0, mismatches = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -34,6 +45,7 @@ double binary_r2(const float* predicted, const float* truth, std::size_t n, doub
 
 double contact_iou(const float* predicted, const float* truth, std::size_t n,
                    double threshold_kpa) {
+  check_threshold(threshold_kpa, "contact_iou");
   std::size_t both = 0, either = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;
@@ -65,6 +77,12 @@ bool centre_of_pressure(const float* frame, const MatSpec& mat, double& row, dou
 
 SequenceMetrics compare(const PressureSequence& predicted, const PressureSequence& truth,
                         const MetricOptions& options) {
+  for (const PressureSequence* s : {&predicted, &truth})
+    if (!(s->mat.pitch_m > 0) || !std::isfinite(s->mat.pitch_m))  // the centre of pressure's cm
+      throw Error("compare: pitch_m: expected a cell size > 0 m, found " + number_text(s->mat.pitch_m));
+  if (predicted.mat.pitch_m != truth.mat.pitch_m)
+    throw Error("compare: mats differ in pitch_m (" + number_text(predicted.mat.pitch_m) + " vs " +
+                number_text(truth.mat.pitch_m) + " m)");
   if (!(predicted.mat == truth.mat) || predicted.frames() != truth.frames())
     throw Error("compare: shapes differ (" + std::to_string(predicted.frames()) + " x " +
                 std::to_string(predicted.mat.rows) + " x " + std::to_string(predicted.mat.cols) +

@@ -92,6 +92,9 @@ Motion generate_motion(const GenerateOptions& options) {
   if (options.performer < 1 || options.take < 1)
     throw Error("generate_motion: expected performer and take >= 1, found " +
                 std::to_string(options.performer) + " and " + std::to_string(options.take));
+  if (!(options.height_cm == 0 || (options.height_cm >= 50 && options.height_cm <= 250)))
+    throw Error("generate_motion: height_cm: expected 0 (the performer's own) or a height in [50, 250] cm, found " +
+                number_text(options.height_cm));
   const double height_cm =
       options.height_cm > 0 ? options.height_cm : performer_height_cm(options.performer, options.seed);
   if (height_cm < 50 || height_cm > 250)
