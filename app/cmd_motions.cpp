@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +16,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet::cli {
 namespace {
@@ -42,10 +42,7 @@ struct MotionsCli {
 
 std::vector<Category> parse_categories(const std::string& list) {
   std::vector<Category> out;
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(parse_category(item));
+  for (const std::string& item : split_list(list)) out.push_back(parse_category(item));
   if (out.empty()) throw Error("--categories: expected a comma-separated list of categories, found '" + list + "'");
   return out;
 }

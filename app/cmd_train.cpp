@@ -5,11 +5,13 @@
 //   ptnet train --data finetune.h5 --out tuned/ --init model/ --identity-pairs   # fine-tune
 //   ptnet train --data data.h5 --out model/ --nproc 2                # 2 local ranks (docs/distributed.md)
 //   ptnet train ... --world-size 4 --rank 1 --rendezvous tcp://node1:29500
-#include <sstream>
+#include <cstdint>
+#include <limits>
 
 #include "command.hpp"
 #include "local_ranks.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/train.hpp"
 
 namespace ptnet::cli {
@@ -31,22 +33,15 @@ struct TrainCli {
 };
 
 std::array<int, 3> parse_channels(const std::string& text) {
+  const std::vector<std::string> items = split_list(text);
   std::array<int, 3> c{};
-  std::stringstream ss(text);
-  std::string item;
-  int i = 0;
-  while (std::getline(ss, item, ',')) {
-    if (i == 3) break;
-    try {
-      c[std::size_t(i)] = std::stoi(item);
-    } catch (const std::exception&) {
-      i = 4;
-      break;
-    }
-    ++i;
+  bool ok = items.size() == c.size();
+  for (std::size_t i = 0; ok && i < c.size(); ++i) {
+    std::int64_t v = 0;
+    ok = parse_integer(items[i], std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), v);
+    c[i] = int(v);
   }
-  if (i != 3 || !ss.eof())
-    throw Error("--channels: expected three comma-separated widths like 16,32,64, found \"" + text + "\"");
+  if (!ok) throw Error("--channels: expected three comma-separated widths like 16,32,64, found \"" + text + "\"");
   return c;
 }
 

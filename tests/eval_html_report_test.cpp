@@ -76,7 +76,7 @@ TEST(EvalHtmlReport, TrainingCurveFromHistoryCsvAndTheConfig) {
     write_report_html({row("model", "rom", 1, 1.0)}, {}, {}, "d.h5", o);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("history.csv:1: expected a column train_loss"),
+    EXPECT_NE(std::string(e.what()).find("history.csv:1: expected a header with column train_loss (epoch,train_loss,val_loss)"),
               std::string::npos)
         << e.what();
   }

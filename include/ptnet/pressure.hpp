@@ -52,6 +52,13 @@ inline void zero_below(PressureSequence& s, double kpa) {
     if (v < kpa) v = 0.0f;
 }
 
+// Binary R^2 from counts over n cells (the one formula behind eval's
+// binary_r2 and training's validation): with both maps binarised, SS_res =
+// `mismatches` and SS_tot = n q (1 - q) about the truth's mean q = ones / n,
+// so R^2 = 1 - mismatches / (n q (1 - q)). Constant truth (q = 0 or 1):
+// 1 if nothing mismatches, 0 otherwise; n = 0: 1. Never NaN.
+double binary_r2_from_counts(double mismatches, double ones, double n);
+
 // The index of the first NaN or infinite value of kpa[0, n), n if none
 // (a vectorised scan: the writer checks every value it stores).
 std::size_t first_non_finite(const float* kpa, std::size_t n);

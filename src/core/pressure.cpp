@@ -1,4 +1,5 @@
-// Checks shared by every reader of pressure frames (ptnet/pressure.hpp).
+// Checks shared by every reader of pressure frames, binary R^2 from counts
+// (ptnet/pressure.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -8,6 +9,13 @@
 #include "ptnet/pressure.hpp"
 
 namespace ptnet {
+
+double binary_r2_from_counts(double mismatches, double ones, double n) {
+  if (n <= 0) return 1;
+  if (ones <= 0 || ones >= n) return mismatches == 0 ? 1.0 : 0.0;  // constant truth: SS_tot = 0
+  const double q = ones / n;
+  return 1.0 - mismatches / (n * q * (1.0 - q));
+}
 
 std::size_t first_non_finite(const float* kpa, std::size_t n) {
   constexpr std::size_t kBlock = 1024;

@@ -14,8 +14,10 @@
 #include <sstream>
 #include <tuple>
 
+#include "ptnet/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/viz.hpp"
 
 namespace ptnet {
@@ -233,47 +235,27 @@ std::string worst_html(const std::vector<EvalRow>& rows, const std::vector<PairF
   return o.str();
 }
 
-// history.csv columns by name: epoch, train_loss, val_loss (others ignored).
+// history.csv columns by name (core's CSV reader): epoch, train_loss,
+// val_loss (others ignored).
 LineChart training_chart(const std::string& history_path) {
-  std::istringstream in(read_text_file(history_path));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  {
-    std::stringstream ss(line);
-    std::string n;
-    while (std::getline(ss, n, ','))
-      names.push_back(n.back() == '\r' ? n.substr(0, n.size() - 1) : n);
-  }
-  auto column = [&](const std::string& n) {
-    const auto it = std::find(names.begin(), names.end(), n);
-    if (it == names.end()) throw Error::at(history_path, 1, "a column " + n, "'" + line + "'");
-    return std::size_t(it - names.begin());
-  };
-  const std::size_t ce = column("epoch"), ct = column("train_loss"), cv = column("val_loss");
+  const CsvTable t = read_csv(history_path);
+  const std::string columns = "epoch,train_loss,val_loss";
+  const int ce = t.required("epoch", columns), ct = t.required("train_loss", columns),
+            cv = t.required("val_loss", columns);
   LineChart c;
   c.title = "Training curve";
   c.x_label = "epoch";
   c.y_label = "loss (normalised MSE)";
   c.series = {{"train", {}, {}}, {"validation", {}, {}}};
-  long line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line == "\r") continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string x;
-    while (std::getline(ss, x, ',')) f.push_back(x);
-    try {
-      const double epoch = std::stod(f.at(ce));
-      c.series[0].x.push_back(epoch);
-      c.series[0].y.push_back(std::stod(f.at(ct)));
-      c.series[1].x.push_back(epoch);
-      c.series[1].y.push_back(std::stod(f.at(cv)));
-    } catch (const std::exception&) {
-      throw Error::at(history_path, line_no, "numbers in columns epoch, train_loss, val_loss",
-                      "'" + line + "'");
-    }
+  for (const CsvRow& row : t.rows) {
+    double epoch = 0, train = 0, val = 0;
+    if (!parse_number(CsvTable::field(row, ce), epoch) || !parse_number(CsvTable::field(row, ct), train) ||
+        !parse_number(CsvTable::field(row, cv), val))
+      throw Error::at(history_path, row.line, "numbers in columns " + columns, escaped(join(row.fields), 60));
+    c.series[0].x.push_back(epoch);
+    c.series[0].y.push_back(train);
+    c.series[1].x.push_back(epoch);
+    c.series[1].y.push_back(val);
   }
   return c;
 }

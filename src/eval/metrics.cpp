@@ -28,19 +28,13 @@ void check_threshold(double threshold_kpa, const char* what) {
 
 double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
   check_threshold(threshold_kpa, "binary_r2");
-  if (n == 0) return 1;
   std::size_t ones = 0, mismatches = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;
     ones += t;
     mismatches += (t != p);
   }
-  // Binary values: SS_res counts mismatches; SS_tot = n * q * (1 - q), q = mean.
-  const double q = double(ones) / double(n);
-  const double ss_tot = double(n) * q * (1.0 - q);
-  const double ss_res = double(mismatches);
-  if (ones == 0 || ones == n) return mismatches == 0 ? 1.0 : 0.0;  // constant truth
-  return 1.0 - ss_res / ss_tot;
+  return binary_r2_from_counts(double(mismatches), double(ones), double(n));
 }
 
 double contact_iou(const float* predicted, const float* truth, std::size_t n,

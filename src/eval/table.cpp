@@ -168,42 +168,44 @@ std::string format_metrics_csv(const std::vector<EvalRow>& rows) {
 std::vector<EvalRow> parse_metrics_csv(const std::string& text, const std::string& source) {
   const CsvTable t = parse_csv(text, source);
   const std::string columns = join(kCsvColumns);
-  std::vector<int> c;
-  for (const auto& name : kCsvColumns) c.push_back(t.required(name, columns));
+  std::map<std::string, int> index;  // column name -> field index
+  for (const auto& name : kCsvColumns) index[name] = t.required(name, columns);
   std::vector<EvalRow> rows;
   for (const CsvRow& row : t.rows) {
-    const auto text_of = [&](int i) { return csv_text_value(CsvTable::field(row, c[std::size_t(i)])); };
-    const auto number = [&](int i) {  // as printed by full(): nan and inf too
-      const std::string& f = CsvTable::field(row, c[std::size_t(i)]);
+    const auto field = [&](const std::string& name) -> const std::string& {
+      return CsvTable::field(row, index.at(name));
+    };
+    const auto text_of = [&](const std::string& name) { return csv_text_value(field(name)); };
+    const auto number = [&](const std::string& name) {  // as printed by full(): nan and inf too
+      const std::string& f = field(name);
       char* end = nullptr;
       const double v = std::strtod(f.c_str(), &end);
       if (f.empty() || *end != '\0')
-        throw Error::at(source, row.line, "a number in column " + kCsvColumns[std::size_t(i)], escaped(f));
+        throw Error::at(source, row.line, "a number in column " + name, escaped(f));
       return v;
     };
-    const auto integer = [&](int i) {
-      const double v = number(i);
+    const auto integer = [&](const std::string& name) {
+      const double v = number(name);
       if (!(v == std::floor(v) && std::abs(v) < 2e9))
-        throw Error::at(source, row.line, "a whole number in column " + kCsvColumns[std::size_t(i)],
-                        escaped(CsvTable::field(row, c[std::size_t(i)])));
+        throw Error::at(source, row.line, "a whole number in column " + name, escaped(field(name)));
       return int(v);
     };
     EvalRow r;
-    r.method = text_of(0);
-    r.motion_id = text_of(1);
-    r.category = text_of(2);
-    r.take = integer(3);
-    r.source_sequence = text_of(4);
-    r.target_sequence = text_of(5);
-    r.source_body = text_of(6);
-    r.target_body = text_of(7);
-    r.frames = integer(8);
-    r.metrics.rmse_kpa = number(9);
-    r.metrics.binary_r2 = number(10);
-    r.metrics.cop_error_cm = number(11);
-    r.metrics.cop_frames = integer(12);
-    r.metrics.force_error_pct = number(13);
-    r.metrics.contact_iou = number(14);
+    r.method = text_of("method");
+    r.motion_id = text_of("motion_id");
+    r.category = text_of("category");
+    r.take = integer("take");
+    r.source_sequence = text_of("source_sequence");
+    r.target_sequence = text_of("target_sequence");
+    r.source_body = text_of("source_body");
+    r.target_body = text_of("target_body");
+    r.frames = integer("frames");
+    r.metrics.rmse_kpa = number("rmse_kpa");
+    r.metrics.binary_r2 = number("binary_r2");
+    r.metrics.cop_error_cm = number("cop_error_cm");
+    r.metrics.cop_frames = integer("cop_frames");
+    r.metrics.force_error_pct = number("force_error_pct");
+    r.metrics.contact_iou = number("contact_iou");
     rows.push_back(r);
   }
   return rows;

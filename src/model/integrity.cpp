@@ -1,24 +1,17 @@
 // Digests of the weights, recorded in config.json and checked on load
 // (ptnet/model.hpp).
-#include <cstdio>
-
 #include "ptnet/error.hpp"
+#include "ptnet/hash.hpp"
 #include "ptnet/model.hpp"
 
 namespace ptnet {
 namespace {
 
-struct Fnv {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  void add(const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-  }
-  void add(const std::string& s) { add(s.data(), s.size() + 1); }
-};
+// A name with its terminating NUL, so that names and data cannot run together.
+void add_name(Fnv1a& f, const std::string& name) { f.add(name).add_byte(0); }
 
-void add_tensor(Fnv& f, const std::string& name, const torch::Tensor& t) {
-  f.add(name);
+void add_tensor(Fnv1a& f, const std::string& name, const torch::Tensor& t) {
+  add_name(f, name);
   const torch::Tensor c = t.detach().to(torch::kCPU, torch::kFloat32).contiguous();
   for (const auto d : c.sizes()) f.add(&d, sizeof d);
   f.add(c.data_ptr<float>(), std::size_t(c.numel()) * sizeof(float));
@@ -27,20 +20,18 @@ void add_tensor(Fnv& f, const std::string& name, const torch::Tensor& t) {
 }  // namespace
 
 std::string weights_digest(const torch::nn::Module& net) {
-  Fnv f;
+  Fnv1a f;
   for (const auto& item : net.named_parameters(/*recurse=*/true)) add_tensor(f, item.key(), item.value());
   for (const auto& item : net.named_buffers(/*recurse=*/true)) {
     if (item.value().scalar_type() != torch::kFloat32) {  // num_batches_tracked: int64
-      f.add(item.key());
+      add_name(f, item.key());
       const torch::Tensor c = item.value().to(torch::kCPU).contiguous();
       f.add(c.data_ptr(), std::size_t(c.numel()) * c.element_size());
     } else {
       add_tensor(f, item.key(), item.value());
     }
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
-  return hex;
+  return f.hex();
 }
 
 void check_weights_digest(const torch::nn::Module& net, const std::string& recorded, const std::string& path,

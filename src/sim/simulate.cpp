@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ptnet/error.hpp"
+#include "ptnet/hash.hpp"
 #include "sim_internal.hpp"
 
 namespace ptnet {
@@ -127,8 +128,7 @@ std::vector<PressureSequence> simulate_reads(const Motion& motion, const Body& b
 }
 
 std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char ch : name) h = (h ^ ch) * 0x100000001b3ULL;
+  const std::uint64_t h = fnv1a(name);
   std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * (h | 1);
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;

@@ -1,8 +1,8 @@
 // Pressure sources (memory), digest, the training protocol filter.
-#include <cstdio>
 #include <cstring>
 
 #include "ptnet/error.hpp"
+#include "ptnet/hash.hpp"
 #include "ptnet/train.hpp"
 
 namespace ptnet {
@@ -51,15 +51,8 @@ void MemorySource::read(const std::string& name, int start, int count, float* ou
 }
 
 std::string source_digest(const PressureSource& source) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&](const std::string& s) {
-    for (unsigned char c : s) {
-      h ^= c;
-      h *= 1099511628211ull;
-    }
-    h ^= 0xff;
-    h *= 1099511628211ull;
-  };
+  Fnv1a h(Fnv1a::kTruncatedBasis);
+  const auto mix = [&](const std::string& s) { h.add(s).add_byte(0xff); };  // 0xff ends each field
   const MatSpec m = source.mat();
   mix(std::to_string(m.rows) + "x" + std::to_string(m.cols) + "@" + std::to_string(m.pitch_m));
   for (const auto& b : source.bodies())
@@ -68,9 +61,7 @@ std::string source_digest(const PressureSource& source) {
   for (const auto& s : source.sequences())
     mix(s.name + "," + s.body_id + "," + s.motion_id + "," + std::to_string(s.take) + "," +
         std::to_string(s.frames));
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-  return text;
+  return h.hex();
 }
 
 bool is_training_sequence(const BodySpec& body, const SequenceMeta& meta) {

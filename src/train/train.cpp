@@ -289,13 +289,6 @@ struct ValResult {
   double copy_binary_r2 = 0;
 };
 
-// 1 - mismatches / (n q (1 - q)), q the truth's contact fraction (eval.hpp).
-double binary_r2_from_counts(double mismatches, double ones, double n) {
-  const double q = ones / n, ss_tot = n * q * (1 - q);
-  if (ss_tot <= 0) return mismatches == 0 ? 1.0 : 0.0;
-  return 1 - mismatches / ss_tot;
-}
-
 // Distributed: the micro-batches are dealt round-robin to the ranks and the
 // sums all-reduced, so every rank gets the whole validation set's result.
 // `mirrored`: the network's output averaged as at inference with ModelConfig::mirror.

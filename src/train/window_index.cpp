@@ -6,22 +6,11 @@
 #include <set>
 
 #include "ptnet/error.hpp"
+#include "ptnet/hash.hpp"
 #include "ptnet/train.hpp"
 #include "window_index.hpp"
 
 namespace ptnet {
-namespace {
-
-std::uint64_t fnv1a(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-}  // namespace
 
 WindowIndex WindowIndex::build(const PressureSource& source, const WindowOptions& options) {
   if (options.window < 1) throw Error("window must be >= 1, found " + std::to_string(options.window));
@@ -64,7 +53,7 @@ WindowIndex WindowIndex::build(const PressureSource& source, const WindowOptions
     if (n_val > 0 && starts >= n_val + gap + 1) {
       // Anywhere when there is room for training windows on both sides,
       // else at the end (one gap only).
-      std::mt19937_64 rng(options.seed ^ fnv1a(motion));
+      std::mt19937_64 rng(options.seed ^ fnv1a(motion, Fnv1a::kTruncatedBasis));
       const int v0 = starts >= 3 * (n_val + gap) ? std::uniform_int_distribution<int>(0, starts - n_val)(rng)
                                                  : starts - n_val;
       val.push_back({v0, v0 + n_val});

@@ -1,0 +1,14 @@
+// FNV-1a 64 (ptnet/hash.hpp).
+#include "ptnet/hash.hpp"
+
+#include <cstdio>
+
+namespace ptnet {
+
+std::string Fnv1a::hex() const {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h_));
+  return text;
+}
+
+}  // namespace ptnet
