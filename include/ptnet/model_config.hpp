@@ -99,6 +99,8 @@ struct ModelConfig {
 void validate(const ModelConfig& config);
 // Rows and cols after `level` poolings (level 0 = input): ceil halving.
 std::array<int, 2> pooled_size(const ModelConfig& config, int level);
+
+// The cost model (src/model/cost_model.cpp).
 // Closed-form number of trainable parameters (equals the module's count).
 std::int64_t parameter_count(const ModelConfig& config);
 // Bytes a model needs in memory (an estimate, for the check before
@@ -141,12 +143,14 @@ struct ModelDir {
   nlohmann::json integrity;
 };
 
+// The digests in config.json (src/model/integrity_record.cpp; the digest: integrity.cpp).
 // The digest recorded in dir.integrity for `file` ("model.pt",
 // "checkpoint.pt"), "" when none; `epoch` gets the checkpoint's epoch (-1).
 std::string recorded_digest(const ModelDir& dir, const std::string& file, int* epoch = nullptr);
 // Records `digest` for `file` (with the checkpoint's epoch when >= 0).
 void record_digest(ModelDir& dir, const std::string& file, const std::string& digest, int epoch = -1);
 
+// config.json (src/model/config_json.cpp).
 nlohmann::json to_json(const ModelConfig& config);
 ModelConfig model_config_from_json(const nlohmann::json& j, const std::string& where);
 nlohmann::json to_json(const ModelDir& dir);

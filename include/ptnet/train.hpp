@@ -148,7 +148,7 @@ struct TrainOptions {
 
   // "paper": the paper's network and schedule (the defaults above). "fast":
   // ours, for two CPU cores; "full": the fast network trained longer. The
-  // values are set in one place, from_preset() (src/train/train.cpp);
+  // values are set in one place, from_preset() (src/train/train_options.cpp);
   // summary() describes them (`ptnet train --help`).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
   // Switches the architecture. A window network (faithful, skip, residual)

@@ -134,6 +134,32 @@ void canonical_codes(const std::uint8_t* len, int n, std::uint16_t* code) {
   }
 }
 
+// A code-length symbol (RFC 1951, 3.2.7) with its extra bits.
+struct ClSym {
+  std::uint8_t sym, bits, extra;
+};
+
+// The code lengths len[0, n) run-length coded with symbols 16 (repeat the
+// previous 3-6 times), 17 (3-10 zeros) and 18 (11-138 zeros).
+std::vector<ClSym> code_length_symbols(const std::uint8_t* len, int n) {
+  std::vector<ClSym> cl;
+  for (int i = 0; i < n;) {
+    const std::uint8_t v = len[i];
+    int run = 1;
+    while (i + run < n && len[i + run] == v) ++run;
+    i += run;
+    if (v == 0) {
+      for (; run >= 11; run -= std::min(run, 138)) cl.push_back({18, 7, std::uint8_t(std::min(run, 138) - 11)});
+      if (run >= 3) cl.push_back({17, 3, std::uint8_t(run - 3)}), run = 0;
+    } else {
+      cl.push_back({v, 0, 0}), --run;
+      for (; run >= 3; run -= std::min(run, 6)) cl.push_back({16, 2, std::uint8_t(std::min(run, 6) - 3)});
+    }
+    for (; run > 0; --run) cl.push_back({v, 0, 0});
+  }
+  return cl;
+}
+
 class BitWriter {
  public:
   explicit BitWriter(unsigned char* out) : out_(out) {}
@@ -195,27 +221,9 @@ std::size_t RunDeflater::compress(const unsigned char* in, std::size_t n, unsign
   len[nlit] = len[nlit + 1] = 1;      // the two distance codes follow the literal/length lengths
   const int nall = nlit + 2;
 
-  // 3. The code lengths, run-length coded with symbols 16 (repeat the
-  //    previous 3-6 times), 17 (3-10 zeros) and 18 (11-138 zeros).
-  struct ClSym {
-    std::uint8_t sym, bits, extra;
-  };
-  std::vector<ClSym> cl;
+  // 3. The code lengths, run-length coded (code_length_symbols).
+  const std::vector<ClSym> cl = code_length_symbols(len, nall);
   std::uint32_t cl_freq[19] = {};
-  for (int i = 0; i < nall;) {
-    const std::uint8_t v = len[i];
-    int run = 1;
-    while (i + run < nall && len[i + run] == v) ++run;
-    i += run;
-    if (v == 0) {
-      for (; run >= 11; run -= std::min(run, 138)) cl.push_back({18, 7, std::uint8_t(std::min(run, 138) - 11)});
-      if (run >= 3) cl.push_back({17, 3, std::uint8_t(run - 3)}), run = 0;
-    } else {
-      cl.push_back({v, 0, 0}), --run;
-      for (; run >= 3; run -= std::min(run, 6)) cl.push_back({16, 2, std::uint8_t(std::min(run, 6) - 3)});
-    }
-    for (; run > 0; --run) cl.push_back({v, 0, 0});
-  }
   for (const ClSym& c : cl) ++cl_freq[c.sym];
   std::uint8_t cl_len[19];
   std::uint16_t cl_code[19] = {};

@@ -55,6 +55,40 @@ std::pair<torch::Tensor, torch::Tensor> norm_affine(const Named& n, const std::s
   return {scale, shift};
 }
 
+// Arch::frame's input frames: x [N,T,H,W] -> [M,K,H,W], each frame with
+// `context` neighbours on each side (the window's end frames repeated).
+torch::Tensor frame_inputs(const torch::Tensor& x, int context) {
+  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);
+  if (context == 0) return x.reshape({n * t, 1, h, w});
+  auto padded = torch::cat({x.narrow(1, 0, 1).expand({n, context, h, w}), x,
+                            x.narrow(1, t - 1, 1).expand({n, context, h, w})}, 1);
+  return padded.unfold(1, 2 * context + 1, 1).permute({0, 1, 4, 2, 3}).reshape({n * t, 2 * context + 1, h, w});
+}
+
+// Arch::frame's output, one pass over the cells: ReLU(frame + correction),
+// and with a contact head 0 where the logit is < 0, else at least `floor`
+// (PressureTransferNetImpl::contact_output). x [N,T,H,W]; out [M,1+contact,H,W]
+// (correction, logit) -> [N,T,H,W].
+torch::Tensor frame_outputs(const torch::Tensor& x, const torch::Tensor& out, bool contact, float floor) {
+  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);
+  auto head = out.contiguous();                                                        // [M,1+contact,H,W]
+  auto in = x.contiguous();                                                            // [N,T,H,W]
+  auto y = torch::empty({n, t, h, w}, x.options());
+  const int64_t count = n * t, cells = h * w, outs = head.size(1);
+  const float* hp = head.data_ptr<float>();
+  const float* xp = in.data_ptr<float>();
+  float* yp = y.data_ptr<float>();
+  for (int64_t f = 0; f < count; ++f) {
+    const float* correction = hp + f * outs * cells;
+    const float* logit = correction + cells;
+    for (int64_t i = 0; i < cells; ++i) {
+      const float p = std::max(xp[f * cells + i] + correction[i], 0.0f);
+      yp[f * cells + i] = !contact ? p : logit[i] > 0 ? std::max(p, floor) : 0.0f;
+    }
+  }
+  return y;
+}
+
 }  // namespace
 
 InferenceNet::InferenceNet(const PressureTransferNet& net, MemoryLayout layout) : config_(net->config()) {
@@ -156,7 +190,7 @@ torch::Tensor InferenceNet::forward_window(const torch::Tensor& x, const torch::
 torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::Tensor& source,
                                           const torch::Tensor& target) {
   const auto& c = config_;
-  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);
+  const auto n = x.size(0), t = x.size(1);
   // One body pair for all windows? Read on the host: a few floats, no tensor ops.
   const auto src = source.contiguous(), dst = target.contiguous();
   const float *sp = src.data_ptr<float>(), *dp = dst.data_ptr<float>();
@@ -211,15 +245,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
     // 1x1 convolution, then nearest upsampling to like's size (they commute)
     return torch::upsample_nearest2d(torch::conv2d(in, l.weight, l.bias), {like.size(2), like.size(3)});
   };
-  torch::Tensor frames;                                                                // [M,K,H,W]
-  if (c.context == 0) {
-    frames = x.reshape({n * t, 1, h, w});
-  } else {
-    auto padded = torch::cat({x.narrow(1, 0, 1).expand({n, c.context, h, w}), x,
-                              x.narrow(1, t - 1, 1).expand({n, c.context, h, w})}, 1);
-    frames = padded.unfold(1, 2 * c.context + 1, 1).permute({0, 1, 4, 2, 3}).reshape({n * t, 2 * c.context + 1, h, w});
-  }
-  frames = frames.contiguous(format_);
+  const torch::Tensor frames = frame_inputs(x, c.context).contiguous(format_);        // [M,K,H,W]
   auto e0 = block(0, frames);                                                          // [M,C1,H,W]
   auto e1 = block(1, pool(e0));                                                        // [M,C2,H1,W1]
   auto e2 = block(2, pool(e1));                                                        // [M,C3,H2,W2]
@@ -227,26 +253,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
   auto d1 = block(4, lateral_up(layers_[6], m, e1).add_(e1));                          // [M,C2,H1,W1]
   auto d0 = block(5, lateral_up(layers_[7], d1, e0).add_(e0));                         // [M,C1,H,W]
   auto out = torch::conv2d(d0, layers_[8].weight, layers_[8].bias, 1, 1);             // [M,1+contact,H,W]
-  // The output, one pass over the cells: ReLU(frame + correction), and with a
-  // contact head 0 where the logit is < 0, else at least the contact floor
-  // (PressureTransferNetImpl::contact_output).
-  auto head = out.contiguous();                                                        // [M,1+contact,H,W]
-  auto in = x.contiguous();                                                            // [N,T,H,W]
-  auto y = torch::empty({n, t, h, w}, x.options());
-  const int64_t count = n * t, cells = h * w, outs = head.size(1);
-  const float* hp = head.data_ptr<float>();
-  const float* xp = in.data_ptr<float>();
-  float* yp = y.data_ptr<float>();
-  const float floor = c.contact ? contact_floor_.item<float>() : 0.0f;
-  for (int64_t f = 0; f < count; ++f) {
-    const float* correction = hp + f * outs * cells;
-    const float* logit = correction + cells;
-    for (int64_t i = 0; i < cells; ++i) {
-      const float p = std::max(xp[f * cells + i] + correction[i], 0.0f);
-      yp[f * cells + i] = !c.contact ? p : logit[i] > 0 ? std::max(p, floor) : 0.0f;
-    }
-  }
-  return y;
+  return frame_outputs(x, out, c.contact, c.contact ? contact_floor_.item<float>() : 0.0f);
 }
 
 }  // namespace ptnet

@@ -1,5 +1,5 @@
-// Digests of the weights, recorded in config.json and checked on load
-// (ptnet/model.hpp).
+// Digests of the weights (ptnet/model.hpp), recorded in config.json's
+// "integrity" (integrity_record.cpp) and checked on load.
 #include "ptnet/error.hpp"
 #include "ptnet/hash.hpp"
 #include "ptnet/model.hpp"

@@ -124,11 +124,13 @@ void correct_foot_pitch(Pose& pose, const std::array<double, 2>& offsets) {
 
 namespace ptnet {
 
-MotionPlacement place_motion(const Motion& motion, const SimOptions& options) {
+namespace {
+
+// The mat's long axis (a unit vector, world x-y): the major axis of the
+// pelvis path about its mean, pointed the way the body travels (or faces,
+// for a round trip); the facing direction for a body that stays in place.
+Eigen::Vector2d mat_axis(const Motion& motion) {
   const int T = motion.size();
-  if (T == 0) throw Error("place_motion: motion '" + motion.name + "' has no frames");
-  MotionPlacement out;
-  out.anchor = motion.frames.front()[kPelvis].head<2>();
   Eigen::Vector2d mean = Eigen::Vector2d::Zero(), facing = Eigen::Vector2d::Zero();
   for (const auto& pose : motion.frames) {
     mean += pose[kPelvis].head<2>();
@@ -163,47 +165,54 @@ MotionPlacement place_motion(const Motion& motion, const SimOptions& options) {
     double sign = std::abs(travel) > 0.1 ? travel : axis.dot(facing);
     if (sign < 0) axis = -axis;
   }
-  out.axis = axis;
-  out.left = Eigen::Vector2d(-axis.y(), axis.x());
+  return axis;
+}
 
-  out.centre.assign(T, mean);
-  if (options.placement == Placement::fixed) {
-    // Centre of the pelvis path's bounding box in mat axes.
-    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-    for (const auto& pose : motion.frames) {
-      Eigen::Vector2d p = pose[kPelvis].head<2>();
-      x0 = std::min(x0, out.axis.dot(p)), x1 = std::max(x1, out.axis.dot(p));
-      y0 = std::min(y0, out.left.dot(p)), y1 = std::max(y1, out.left.dot(p));
-    }
-    Eigen::Vector2d c = 0.5 * (x0 + x1) * out.axis + 0.5 * (y0 + y1) * out.left;
-    out.centre.assign(T, c);
-  } else {
-    std::vector<double> px(T), py(T);
-    for (int t = 0; t < T; ++t) {
-      px[t] = motion.frames[t][kPelvis].x();
-      py[t] = motion.frames[t][kPelvis].y();
-    }
-    // Smoothing near the ends: the path is extended by its point reflection
-    // through the end point, so that steady walking is followed without lag.
-    const double sigma = options.follow_smoothing_s * motion.fps;
-    auto smooth_path = [&](const std::vector<double>& x) {
-      const int pad = std::min(T - 1, int(std::ceil(3 * sigma)));
-      std::vector<double> ext;
-      ext.reserve(std::size_t(T + 2 * pad));
-      for (int k = pad; k >= 1; --k) ext.push_back(2 * x[0] - x[std::size_t(k)]);
-      ext.insert(ext.end(), x.begin(), x.end());
-      for (int k = 1; k <= pad; ++k) ext.push_back(2 * x[std::size_t(T - 1)] - x[std::size_t(T - 1 - k)]);
-      ext = detail::gaussian_smooth(ext, sigma);
-      return std::vector<double>(ext.begin() + pad, ext.begin() + pad + T);
-    };
-    px = smooth_path(px);
-    py = smooth_path(py);
-    for (int t = 0; t < T; ++t) out.centre[t] = Eigen::Vector2d(px[t], py[t]);
+// Placement::fixed: the centre of the pelvis path's bounding box in mat axes.
+Eigen::Vector2d fixed_centre(const Motion& motion, const Eigen::Vector2d& axis, const Eigen::Vector2d& left) {
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const auto& pose : motion.frames) {
+    Eigen::Vector2d p = pose[kPelvis].head<2>();
+    x0 = std::min(x0, axis.dot(p)), x1 = std::max(x1, axis.dot(p));
+    y0 = std::min(y0, left.dot(p)), y1 = std::max(y1, left.dot(p));
   }
-  // The feet's pitch and the floor of the copy at a reference height (on a
-  // reference body), the floor scaled back: a retargeted copy is this one
-  // scaled by the height ratio, and so is its floor, whatever the body's
-  // girth; its angles are this copy's.
+  return 0.5 * (x0 + x1) * axis + 0.5 * (y0 + y1) * left;
+}
+
+// Placement::follow: the pelvis path smoothed (Gaussian, follow_smoothing_s),
+// one centre per frame.
+std::vector<Eigen::Vector2d> followed_centres(const Motion& motion, const SimOptions& options) {
+  const int T = motion.size();
+  std::vector<double> px(T), py(T);
+  for (int t = 0; t < T; ++t) {
+    px[t] = motion.frames[t][kPelvis].x();
+    py[t] = motion.frames[t][kPelvis].y();
+  }
+  // Smoothing near the ends: the path is extended by its point reflection
+  // through the end point, so that steady walking is followed without lag.
+  const double sigma = options.follow_smoothing_s * motion.fps;
+  auto smooth_path = [&](const std::vector<double>& x) {
+    const int pad = std::min(T - 1, int(std::ceil(3 * sigma)));
+    std::vector<double> ext;
+    ext.reserve(std::size_t(T + 2 * pad));
+    for (int k = pad; k >= 1; --k) ext.push_back(2 * x[0] - x[std::size_t(k)]);
+    ext.insert(ext.end(), x.begin(), x.end());
+    for (int k = 1; k <= pad; ++k) ext.push_back(2 * x[std::size_t(T - 1)] - x[std::size_t(T - 1 - k)]);
+    ext = detail::gaussian_smooth(ext, sigma);
+    return std::vector<double>(ext.begin() + pad, ext.begin() + pad + T);
+  };
+  px = smooth_path(px);
+  py = smooth_path(py);
+  std::vector<Eigen::Vector2d> centres(T);
+  for (int t = 0; t < T; ++t) centres[t] = Eigen::Vector2d(px[t], py[t]);
+  return centres;
+}
+
+// The feet's pitch and the floor of the copy at a reference height (on a
+// reference body), the floor scaled back: a retargeted copy is this one
+// scaled by the height ratio, and so is its floor, whatever the body's
+// girth; its angles are this copy's.
+void place_feet_and_floor(const Motion& motion, const SimOptions& options, MotionPlacement& out) {
   const Motion reference = retarget(motion, kFloorReferenceHeightCm);
   out.foot_pitch = detail::foot_pitch_offsets(reference);
   if (options.floor_window_s > 0) {
@@ -217,6 +226,22 @@ MotionPlacement place_motion(const Motion& motion, const SimOptions& options) {
                                     options.floor_window_s, 0.25);
     for (double& z : out.floor) z /= ratio;
   }
+}
+
+}  // namespace
+
+MotionPlacement place_motion(const Motion& motion, const SimOptions& options) {
+  const int T = motion.size();
+  if (T == 0) throw Error("place_motion: motion '" + motion.name + "' has no frames");
+  MotionPlacement out;
+  out.anchor = motion.frames.front()[kPelvis].head<2>();
+  out.axis = mat_axis(motion);
+  out.left = Eigen::Vector2d(-out.axis.y(), out.axis.x());
+  if (options.placement == Placement::fixed)
+    out.centre.assign(T, fixed_centre(motion, out.axis, out.left));
+  else
+    out.centre = followed_centres(motion, options);
+  place_feet_and_floor(motion, options, out);
   return out;
 }
 

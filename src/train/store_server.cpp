@@ -19,6 +19,12 @@ namespace ptnet {
 using namespace store_protocol;
 namespace {
 constexpr int kServerTick = 100;  // ms: the server notices stop() within it
+
+// A refusal the client reports (status 1 and the reason).
+std::string refused(const std::string& why) { return framed(std::string(1, '\1') + why); }
+std::string store_full() {
+  return refused("the store is full (" + std::to_string(kMaxStoreBytes >> 20) + " MB of keys and values)");
+}
 }  // namespace
 
 struct StoreServer::Impl {
@@ -43,6 +49,8 @@ struct StoreServer::Impl {
   bool write_to(Client& c);
   // The reply to one message, or "" to drop the connection.
   std::string answer(Client& c, std::string_view message);
+  std::string add(Fields& f);          // the replies to kAdd and kCompareSet, "" to drop
+  std::string compare_set(Fields& f);
   bool store(const std::string& key, std::string value);  // false: over kMaxStoreBytes
 };
 
@@ -176,10 +184,6 @@ std::string StoreServer::Impl::answer(Client& c, std::string_view message) {
   const auto op = std::uint8_t(message[0]);
   Fields f{message.substr(1)};
   std::string done(1, '\0');
-  const auto refused = [](const std::string& why) { return framed(std::string(1, '\1') + why); };
-  const auto full = [&] {
-    return refused("the store is full (" + std::to_string(kMaxStoreBytes >> 20) + " MB of keys and values)");
-  };
   if (!c.greeted) {
     if (op != kHello || f.next() != kGreeting || !f.complete()) return {};
     c.greeted = true;
@@ -189,7 +193,7 @@ std::string StoreServer::Impl::answer(Client& c, std::string_view message) {
     case kSet: {
       std::string key = f.next(), value = f.next();
       if (!f.complete()) return {};
-      return store(key, std::move(value)) ? framed(done) : full();
+      return store(key, std::move(value)) ? framed(done) : store_full();
     }
     case kGet: {
       const std::string key = f.next();
@@ -199,23 +203,8 @@ std::string StoreServer::Impl::answer(Client& c, std::string_view message) {
       put_field(done, it == data.end() ? std::string() : it->second);
       return framed(done);
     }
-    case kAdd: {
-      const std::string key = f.next();
-      const std::int64_t delta = f.next_int();
-      if (!f.complete()) return {};
-      long long now = 0;
-      if (const auto it = data.find(key); it != data.end()) {
-        char* end = nullptr;
-        errno = 0;
-        now = std::strtoll(it->second.c_str(), &end, 10);
-        if (it->second.empty() || *end != '\0' || errno != 0)
-          return refused("the value of " + escaped(key) + " is not a number");
-      }
-      const long long sum = (long long)(std::uint64_t(now) + std::uint64_t(delta));  // wraps, never traps
-      if (!store(key, std::to_string(sum))) return full();
-      put_field(done, int_field(sum));
-      return framed(done);
-    }
+    case kAdd:
+      return add(f);
     case kCheck: {
       bool all = true;
       while (!f.rest.empty() && !f.bad) all = data.count(f.next()) > 0 && all;
@@ -238,23 +227,46 @@ std::string StoreServer::Impl::answer(Client& c, std::string_view message) {
       if (!f.complete()) return {};
       put_field(done, int_field(std::int64_t(data.size())));
       return framed(done);
-    case kCompareSet: {
-      std::string key = f.next(), expected = f.next(), desired = f.next();
-      if (!f.complete()) return {};
-      const auto it = data.find(key);
-      std::string result;
-      if ((it == data.end() && expected.empty()) || (it != data.end() && it->second == expected)) {
-        if (!store(key, desired)) return full();
-        result = desired;
-      } else {
-        result = it == data.end() ? expected : it->second;
-      }
-      put_field(done, result);
-      return framed(done);
-    }
+    case kCompareSet:
+      return compare_set(f);
     default:
       return {};
   }
+}
+
+std::string StoreServer::Impl::add(Fields& f) {
+  const std::string key = f.next();
+  const std::int64_t delta = f.next_int();
+  if (!f.complete()) return {};
+  long long now = 0;
+  if (const auto it = data.find(key); it != data.end()) {
+    char* end = nullptr;
+    errno = 0;
+    now = std::strtoll(it->second.c_str(), &end, 10);
+    if (it->second.empty() || *end != '\0' || errno != 0)
+      return refused("the value of " + escaped(key) + " is not a number");
+  }
+  const long long sum = (long long)(std::uint64_t(now) + std::uint64_t(delta));  // wraps, never traps
+  if (!store(key, std::to_string(sum))) return store_full();
+  std::string done(1, '\0');
+  put_field(done, int_field(sum));
+  return framed(done);
+}
+
+std::string StoreServer::Impl::compare_set(Fields& f) {
+  std::string key = f.next(), expected = f.next(), desired = f.next();
+  if (!f.complete()) return {};
+  const auto it = data.find(key);
+  std::string result;
+  if ((it == data.end() && expected.empty()) || (it != data.end() && it->second == expected)) {
+    if (!store(key, desired)) return store_full();
+    result = desired;
+  } else {
+    result = it == data.end() ? expected : it->second;
+  }
+  std::string done(1, '\0');
+  put_field(done, result);
+  return framed(done);
 }
 
 }  // namespace ptnet
