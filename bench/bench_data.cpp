@@ -8,6 +8,7 @@
 #include <random>
 
 #include "ptnet/data.hpp"
+#include "support/synthetic_walk.hpp"
 
 namespace {
 constexpr int kSequences = 8;      // 4 motions x 2 bodies

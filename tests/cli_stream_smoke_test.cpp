@@ -15,6 +15,7 @@
 #include "data_test_util.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/transfer.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;

@@ -13,6 +13,7 @@
 #include "data_test_util.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
+#include "support/synthetic_walk.hpp"
 
 namespace ptnet {
 namespace {

@@ -4,6 +4,7 @@
 
 #include "data_test_util.hpp"
 #include "ptnet/data.hpp"
+#include "support/synthetic_walk.hpp"
 
 namespace ptnet {
 namespace {

@@ -10,6 +10,7 @@
 
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
+#include "support/synthetic_walk.hpp"
 
 namespace ptnet::testing_util {
 

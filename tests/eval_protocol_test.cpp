@@ -9,6 +9,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
+#include "support/synthetic_walk.hpp"
 
 namespace ptnet {
 namespace {

@@ -14,6 +14,7 @@
 #include "ptnet/zip_check.hpp"
 #include "cli_test_util.hpp"
 #include "data_test_util.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;

@@ -15,6 +15,7 @@
 #include "ptnet/state_dict.hpp"
 #include "ptnet/transfer.hpp"
 #include "data_test_util.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;

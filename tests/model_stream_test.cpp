@@ -13,6 +13,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/stream.hpp"
 #include "ptnet/transfer.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;

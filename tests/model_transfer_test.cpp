@@ -11,6 +11,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/transfer.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;

@@ -16,6 +16,7 @@
 #include "ptnet/eval.hpp"
 #include "ptnet/model.hpp"
 #include "ptnet/transfer.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 #include "train/window_index.hpp"
 

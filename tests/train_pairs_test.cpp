@@ -5,6 +5,7 @@
 #include <set>
 
 #include "ptnet/error.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 #include "train/window_index.hpp"
 

@@ -11,6 +11,7 @@
 #include "data_test_util.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/train.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 
 namespace ptnet {

@@ -9,6 +9,7 @@
 
 #include "ptnet/data.hpp"
 #include "ptnet/train.hpp"
+#include "support/memory_source.hpp"
 
 namespace ptnet::testing {
 

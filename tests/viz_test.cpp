@@ -9,6 +9,7 @@
 #include "data_test_util.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/viz.hpp"
+#include "support/synthetic_walk.hpp"
 
 namespace ptnet {
 namespace {

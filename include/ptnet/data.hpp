@@ -84,9 +84,6 @@ class Dataset {
   // Validates format, version, attributes, shapes; throws Error naming the file.
   // The file is noted as an input (no output of the run may replace it).
   static Dataset open(const std::string& path);
-  // The same on an HDF5 file image held in memory (fuzzing, tests); `name`
-  // names it in messages.
-  static Dataset open_image(const std::string& bytes, const std::string& name);
   Dataset(Dataset&&) noexcept;
   Dataset& operator=(Dataset&&) noexcept;
   ~Dataset();
@@ -110,6 +107,7 @@ class Dataset {
   Dataset();
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  friend struct DatasetOnHdf5;  // src/data/dataset_on_hdf5.hpp: an HDF5 file opened another way
 };
 
 // Merges datasets into one at `out_path` (atomically; an existing file needs
@@ -127,13 +125,6 @@ int merge_datasets(const std::vector<std::string>& inputs, const std::string& ou
 // A shard "K/N" (decimal, 0 <= K < N < 2^31, nothing else: "1/2x", "0x1/2"
 // and "1/4294967298" are not): true and K, N; false otherwise.
 bool parse_shard(std::string_view text, int& index, int& count);
-
-// A synthetic walk for tests, benchmarks and figures (not the simulator):
-// a walker crossing the mat from the near end (last row) towards row 0,
-// left foot on the left columns, heel-to-toe roll-over blobs whose size
-// scales with height and whose load scales with weight. kPa, [frames, rows, cols].
-PressureSequence synthetic_walk(const MatSpec& mat, int frames, double fps, double height_cm,
-                                double weight_kg, unsigned long long seed);
 
 // What `ptnet info FILE` prints for a dataset: mat, fps, bodies (table),
 // sequences, frames, per-category and per-take counts, file size and

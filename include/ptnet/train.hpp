@@ -1,6 +1,6 @@
 // ptnet/train.hpp: training PressureTransferNet (no Torch in this header).
 //
-//   auto data = ptnet::open_dataset_source("data.h5");      // or a MemorySource
+//   auto data = ptnet::open_dataset_source("data.h5");      // or any PressureSource
 //   ptnet::TrainOptions opt = ptnet::TrainOptions::from_preset("fast");
 //   opt.seed = 7;
 //   ptnet::TrainResult r = ptnet::train(*data, "model/", opt);  // config.json, model.pt, ...
@@ -20,7 +20,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,7 +34,9 @@ namespace ptnet {
 
 // ------------------------------------------------------------ data sources
 
-// Where training frames come from: the dataset file, or memory (tests).
+// Where training frames come from: the dataset file (open_dataset_source) or
+// any other implementation (the tests keep sequences in memory:
+// tests/support/memory_source.hpp).
 class PressureSource {
  public:
   virtual ~PressureSource() = default;
@@ -50,29 +51,6 @@ class PressureSource {
   const BodySpec& body(const std::string& id) const;          // throws Error if absent
   const SequenceMeta& sequence(const std::string& name) const;  // throws Error if absent
   PressureSequence read_all(const std::string& name) const;    // [T, H, W] kPa
-};
-
-// Sequences held in memory (tests, synthetic data).
-class MemorySource : public PressureSource {
- public:
-  explicit MemorySource(MatSpec mat = {}, double fps = 30, std::string name = "memory");
-  void add_body(const BodySpec& body);
-  void add_sequence(SequenceMeta meta, PressureSequence sequence);  // meta.frames set from data
-
-  std::string path() const override { return name_; }
-  MatSpec mat() const override { return mat_; }
-  double fps() const override { return fps_; }
-  const std::vector<BodySpec>& bodies() const override { return bodies_; }
-  const std::vector<SequenceMeta>& sequences() const override { return metas_; }
-  void read(const std::string& name, int start, int count, float* out) const override;
-
- private:
-  MatSpec mat_;
-  double fps_;
-  std::string name_;
-  std::vector<BodySpec> bodies_;
-  std::vector<SequenceMeta> metas_;
-  std::map<std::string, PressureSequence> data_;
 };
 
 // The HDF5 dataset file (ptnet::Dataset) as a source. Throws Error if the

@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "data/dataset_on_hdf5.hpp"
 #include "data/h5_util.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
@@ -305,20 +306,10 @@ Dataset Dataset::open(const std::string& path) {
   return d;
 }
 
-Dataset Dataset::open_image(const std::string& bytes, const std::string& name) {
-  h5::quiet();
+Dataset DatasetOnHdf5::open(const H5::H5File& file, const std::string& name) {
   Dataset d;
   d.impl_->path = name;
-  try {
-    H5::FileAccPropList fapl;
-    if (H5Pset_fapl_core(fapl.getId(), 1 << 16, /*backing_store=*/0) < 0 ||
-        H5Pset_file_image(fapl.getId(), const_cast<char*>(bytes.data()), bytes.size()) < 0)
-      throw Error::in(name, "cannot set up an in-memory HDF5 file");
-    d.impl_->file = H5::H5File(name, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, fapl);
-  } catch (const H5::Exception&) {
-    const std::string why = h5::error_stack_text();
-    throw Error::in(name, "damaged HDF5 file: " + (why.empty() ? "cannot open" : why));
-  }
+  d.impl_->file = file;
   d.impl_->read_structure();
   return d;
 }

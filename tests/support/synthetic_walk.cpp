@@ -1,9 +1,11 @@
-// synthetic_walk: foot-like pressure blobs for tests, benchmarks and figures.
+// synthetic_walk: foot-like pressure blobs for tests and benchmarks
+// (support/synthetic_walk.hpp).
+#include "support/synthetic_walk.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
-
-#include "ptnet/data.hpp"
+#include <vector>
 
 namespace ptnet {
 
