@@ -4,7 +4,8 @@
 #   make test   install what is missing, build, run every test
 # Other targets: build, install (PREFIX=/usr/local), package (the .deb in
 # build/), bench, asan (sanitizer build + tests), fuzz (libFuzzer harnesses
-# with ASan + UBSan in build-fuzz/, clang), clean.
+# with ASan + UBSan in build-fuzz/, clang), check-cpu (the numerics tests
+# under every instruction set this CPU allows x 1 and 2 threads), clean.
 
 BUILD    ?= build
 JOBS     ?= $(shell nproc)
@@ -12,7 +13,7 @@ CMAKE_FLAGS ?=
 DEMO_OUT ?= demo
 PREFIX   ?= /usr/local
 
-.PHONY: deps build demo test install package bench asan fuzz clean
+.PHONY: deps build demo test check-cpu install package bench asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -30,6 +31,10 @@ demo: deps $(BUILD)/CMakeCache.txt
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# scripts/check-numerics.sh: one line per instruction set x thread count.
+check-cpu: build
+	./scripts/check-numerics.sh $(BUILD)
 
 install: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target installables

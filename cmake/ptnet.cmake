@@ -88,7 +88,18 @@ function(ptnet_test file)
   if(NOT T_LABELS)
     set(T_LABELS unit)
   endif()
-  gtest_discover_tests(${name} PROPERTIES LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+  # gtest_discover_tests passes its properties on as a flat list, so a
+  # second label would be read as a property name: it gets the first, and an
+  # include file run after the discovered tests' (TEST_INCLUDE_FILES keeps
+  # the order) sets them all on the test names it listed in ${name}_TESTS.
+  list(GET T_LABELS 0 first)
+  gtest_discover_tests(${name} PROPERTIES LABELS ${first} DISCOVERY_TIMEOUT 60)
+  list(LENGTH T_LABELS count)
+  if(count GREATER 1)
+    set(labels_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+    file(WRITE ${labels_file} "if(${name}_TESTS)\n  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${T_LABELS}\")\nendif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels_file})
+  endif()
 endfunction()
 
 # ptnet_check_stage_includes(): after every stage is defined. Writes the
