@@ -27,7 +27,7 @@ struct HarBenchCli {
   int training_bodies = 24;
   int transfer_stride = 15;
   int threads = 2;
-  bool no_pseudo = false, force = false;
+  bool force = false;
 };
 
 void run(HarBenchCli& c) {
@@ -36,7 +36,6 @@ void run(HarBenchCli& c) {
   o.deployment_bands = ptnet::split_list(c.bands);
   o.syntheses = ptnet::split_list(c.syntheses);
   o.activities = ptnet::split_list(c.activities);
-  o.pseudo_labels = !c.no_pseudo;
   o.classifier.threads = c.threads;
   if (!ptnet::cli::globals().quiet) o.progress = ptnet::cli::print;
 
@@ -112,9 +111,12 @@ void setup(CLI::App& app) {
   s->add_option("--bodies-per-band", c->o.bodies_per_band, "Deployment bodies per band")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  s->add_option("--runs", c->o.runs, "Seeded classifiers per source and label kind")
+  s->add_option("--runs", c->o.runs, "Seeded runs per source and label kind")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  s->add_option("--ensemble", c->o.ensemble, "Classifiers per run, their probabilities averaged")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   s->add_option("--stride", c->o.stride, "Frames between window starts")->capture_default_str()->check(CLI::Range(1, 30));
   s->add_option("--pool", c->o.input.pool, "Classifier input: cells averaged per side (2: 4 cm cells)")
       ->capture_default_str()
@@ -141,7 +143,8 @@ void setup(CLI::App& app) {
                 "--workers 1 --threads 1")
       ->capture_default_str()
       ->check(ptnet::cli::thread_count(true));
-  s->add_flag("--no-pseudo", c->no_pseudo, "Skip the second table (mean-shift pseudo labels)");
+  s->add_flag("--pseudo", c->o.pseudo_labels,
+              "Add a second table: the paper's mean-shift pseudo labels (doubles the classifiers)");
   s->add_option("--out", c->out, "Output folder (results.json, index.html, f1.svg)")->capture_default_str();
   s->add_flag("--force", c->force, "Overwrite existing outputs");
   s->callback([c] { run(*c); });

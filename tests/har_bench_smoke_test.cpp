@@ -19,7 +19,7 @@ fs::path scratch(const std::string& name) {
 }
 
 const std::string kBase =
-    "har-bench --performers 2 --seconds 8 --recorded-bodies 2 --bodies-per-band 1 --runs 1 --epochs 1 --no-pseudo";
+    "har-bench --performers 2 --seconds 8 --recorded-bodies 2 --bodies-per-band 1 --runs 1 --ensemble 1 --epochs 1";
 const std::string kSmall = kBase + " --syntheses copy";
 
 }  // namespace

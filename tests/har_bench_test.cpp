@@ -42,7 +42,9 @@ BenchOptions small_options() {
   o.recorded_bodies = 2;
   o.bodies_per_band = 1;
   o.runs = 2;
+  o.ensemble = 1;
   o.classifier.epochs = 2;
+  o.pseudo_labels = true;
   o.threads = 2;
   o.workers = 2;
   o.syntheses = {"copy", "body-scale"};
@@ -257,8 +259,8 @@ TEST(HarBench, ProceduralBenchmarkScoresEverySourceOnTheDeploymentBodies) {
 TEST(HarBench, TheTransferFunctionSeesOnlyTrainingParts) {
   BenchOptions o = small_options();
   o.runs = 1;
+  o.ensemble = 1;
   o.classifier.epochs = 1;
-  o.pseudo_labels = false;
   o.syntheses = {"model", "model-mean"};
   int calls = 0;
   const auto transfer = [&](const PressureSequence& s, const BodySpec& from, const BodySpec& to) {
@@ -276,3 +278,47 @@ TEST(HarBench, TheTransferFunctionSeesOnlyTrainingParts) {
   EXPECT_EQ(r.tables[0].sources[1].name, "model");
   EXPECT_EQ(r.tables[0].sources[2].name, "model-mean");
 }
+
+TEST(HarBench, RunsOfEverySourceTrainFromTheSameSeeds) {
+  BenchOptions o = small_options();
+  o.ensemble = 2;
+  o.classifier.epochs = 1;
+  o.pseudo_labels = false;
+  o.syntheses = {"model-mean", "copy"};
+  // An identity transfer makes model-mean's windows copy's windows.
+  const auto identity = [](const PressureSequence& s, const BodySpec&, const BodySpec&) { return s; };
+  const BenchResult r = run_bench(o, identity);
+  EXPECT_EQ(r.ensemble, 2);
+  const BenchTable& t = r.tables[0];
+  ASSERT_EQ(t.sources.size(), 4u);
+  ASSERT_EQ(t.sources[1].macro_f1.size(), 2u);
+  EXPECT_EQ(t.sources[1].macro_f1, t.sources[2].macro_f1) << "the same windows and seeds, the same scores";
+  ASSERT_EQ(t.comparisons.size(), 1u);
+  const BenchComparison& c = t.comparisons[0];
+  EXPECT_EQ(c.source, "model-mean");
+  EXPECT_EQ(c.baseline, "copy");
+  EXPECT_EQ(c.difference, 0.0);
+  EXPECT_EQ(c.paired_sd, 0.0);
+  EXPECT_EQ(c.wins, 0);
+}
+
+TEST(HarBench, ComparisonsAreRunByRun) {
+  BenchSource a, b;
+  a.name = "model";
+  b.name = "copy";
+  a.macro_f1 = {0.60, 0.50, 0.70};
+  b.macro_f1 = {0.55, 0.46, 0.66};  // lower in every run by 0.04-0.05: a common seed effect
+  a.sd = 0.1;
+  b.sd = 0.1;
+  const BenchComparison c = compare_runs(a, b);
+  EXPECT_NEAR(c.difference, 0.13 / 3, 1e-12);
+  const double m = 0.13 / 3;
+  const double var = ((0.05 - m) * (0.05 - m) + 2 * (0.04 - m) * (0.04 - m)) / 2;
+  EXPECT_NEAR(c.paired_sd, std::sqrt(var), 1e-12);
+  EXPECT_EQ(c.run_sd, 0.1);
+  EXPECT_EQ(c.wins, 3);
+  b.macro_f1.pop_back();
+  EXPECT_NE(error_of([&] { compare_runs(a, b); }).find("cannot compare 3 runs of model with 2 of copy"),
+            std::string::npos);
+}
+

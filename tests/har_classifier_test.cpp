@@ -61,6 +61,22 @@ TEST(HarClassifier, LearnsLeftBlobVersusRightBlob) {
   WindowClassifier again(train.channels, train.rows, train.cols, 2, o);
   again.train(train, train_labels);
   EXPECT_EQ(again.predict(test), pred);
+
+  // Probabilities: rows of 2 that sum to 1, their argmax the prediction.
+  const std::vector<float> p = net.probabilities(test);
+  ASSERT_EQ(p.size(), 2u * 100);
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_NEAR(p[2 * i] + p[2 * i + 1], 1.0f, 1e-5f);
+    EXPECT_GE(p[2 * i], 0.0f);
+  }
+  EXPECT_EQ(argmax_rows(p, 2), pred);
+}
+
+TEST(HarClassifier, ArgmaxRowsTakesTheFirstLargestScore) {
+  EXPECT_EQ(argmax_rows({0.1f, 0.7f, 0.2f, 0.5f, 0.5f, 0.0f}, 3), (std::vector<int>{1, 0}));
+  EXPECT_TRUE(argmax_rows({}, 3).empty());
+  EXPECT_THROW(argmax_rows({1, 2, 3, 4}, 3), ptnet::Error);
+  EXPECT_THROW(argmax_rows({1, 2}, 0), ptnet::Error);
 }
 
 TEST(HarClassifier, InputsAreBlockAveragedLog1p) {

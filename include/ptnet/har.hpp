@@ -173,6 +173,10 @@ struct ClassificationReport {
   double accuracy = 0;
 };
 
+// The column of each row's largest score (the first on a tie): scores
+// [N x C] row-major -> [N].
+std::vector<int> argmax_rows(const std::vector<float>& scores, int columns);
+
 // Labels must lie in [0, classes); throws Error otherwise or when the sizes
 // differ or are empty. A class that never occurs in truth nor prediction
 // does not count in the macro average; one that occurs only in one of them
@@ -249,6 +253,8 @@ class WindowClassifier {
   // labels [N] in [0, classes). Returns the mean training loss of the last epoch.
   double train(const PreparedWindows& inputs, const std::vector<int>& labels);
   std::vector<int> predict(const PreparedWindows& inputs) const;  // [N]
+  // Softmax class probabilities [N x C], row-major (predict is their argmax).
+  std::vector<float> probabilities(const PreparedWindows& inputs) const;
 
  private:
   struct Impl;

@@ -81,12 +81,15 @@ inline StandinOptions follow_sensor() {
 }
 
 // The benchmark's classifier: class-balanced loss (activities are far from
-// equally common: 17 of the corpus's 44 clips are dance) and a cosine
-// learning-rate schedule (a steadier last epoch: a smaller spread over runs).
-inline ClassifierOptions balanced_classifier() {
+// equally common: 17 of the corpus's 44 clips are dance), a cosine
+// learning-rate schedule (a steadier last epoch: a smaller spread over runs)
+// and 4 epochs (on the corpus, 6 and 10 epochs score the same; an ensemble
+// of 4-epoch classifiers costs less than more epochs and spreads less).
+inline ClassifierOptions bench_classifier() {
   ClassifierOptions c;
   c.balanced = true;
   c.cosine = true;
+  c.epochs = 4;
   return c;
 }
 
@@ -104,11 +107,15 @@ struct BenchOptions {
   // weight-ratio, body-scale, body-scale-read (body scale, then read by
   // the deployment mat like model).
   std::vector<std::string> syntheses{"model", "copy", "weight-ratio", "body-scale-read"};
-  int runs = 10;                      // seeded classifiers per source and label kind
+  int runs = 10;                      // seeded runs per source and label kind
+  // Classifiers per run, their class probabilities averaged (member k of run
+  // r has seed classifier.seed + r x ensemble + k): a run's F1 then varies
+  // less with the seeds, so sources a few points apart can be told apart.
+  int ensemble = 3;
   int stride = 5;                     // frames between window starts
-  bool pseudo_labels = true;          // the second table: mean-shift pseudo labels
+  bool pseudo_labels = false;         // a second table: mean-shift pseudo labels
   InputOptions input{6, 2};           // 2: 4 cm cells (foot shape survives pooling)
-  ClassifierOptions classifier = balanced_classifier();  // seed of run r = classifier.seed + r
+  ClassifierOptions classifier = bench_classifier();  // seeds: see ensemble
   // Classifiers trained at once, each on one LibTorch thread (0: one per
   // core; 1: one at a time on classifier.threads). The result depends on
   // the LibTorch threads per classifier only: workers > 1 gives the same
@@ -153,12 +160,24 @@ struct BenchSource {
   Eigen::MatrixXi confusion;          // [C, C] summed over runs
 };
 
+// A transfer source (model, model-mean) against a baseline (copy,
+// weight-ratio, body-scale, body-scale-read), run by run: run r of every
+// source trains from the same seeds, so runs pair up.
+struct BenchComparison {
+  std::string source, baseline;
+  double difference = 0;              // mean over runs of source - baseline macro F1
+  double paired_sd = 0;               // sample sd over runs of that difference
+  double run_sd = 0;                  // the larger of the two sources' sd over runs
+  int wins = 0;                       // runs in which the source scores higher
+};
+
 struct BenchTable {
   std::string labels;                 // "activity" or "pseudo"
   std::vector<std::string> classes;   // [C]
   std::vector<int> test_support;      // [C] test windows per class
   std::vector<BenchSource> sources;   // recorded, syntheses..., oracle
   double gap = 0;                     // oracle - recorded mean macro F1
+  std::vector<BenchComparison> comparisons;  // every transfer source x every baseline present
 };
 
 struct BenchResult {
@@ -167,7 +186,7 @@ struct BenchResult {
   std::vector<std::string> left_out;  // "clip: reason" / "activity: reason"
   std::vector<BodySpec> recorded, deployment;
   int clips = 0, recorded_windows = 0, synthetic_windows = 0, test_windows = 0;
-  int runs = 0;
+  int runs = 0, ensemble = 1;       // runs per source, classifiers per run
   std::vector<BenchTable> tables;     // activity, then pseudo (when run)
   double simulate_seconds = 0, transfer_seconds = 0, classify_seconds = 0, seconds = 0;
 };
@@ -175,12 +194,16 @@ struct BenchResult {
 // The benchmark (docs/har_bench.md): simulate the populations, cut the
 // clips, synthesise the deployment bodies' training windows per source
 // (`transfer` for model and model-mean; may be empty when neither is
-// asked), train options.runs classifiers per source and label kind, score
-// them on the deployment bodies' test windows. Throws Error for unknown
+// asked), train options.runs ensembles of options.ensemble classifiers
+// per source and label kind, score them on the deployment bodies' test windows. Throws Error for unknown
 // bands, sources or activities, an activity without a usable clip (when
 // activities were named), fewer than 2 activities, or a model_data that is
 // not a training set of these clips.
 BenchResult run_bench(const BenchOptions& options, const TransferFn& transfer);
+
+// A source's runs against a baseline's, run by run (their macro_f1 and sd
+// must be filled; throws Error for unequal or no runs).
+BenchComparison compare_runs(const BenchSource& source, const BenchSource& baseline);
 
 std::string format_bench(const BenchResult& result);  // the tables as text
 std::string bench_json(const BenchResult& result);    // results.json (pretty)

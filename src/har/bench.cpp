@@ -39,6 +39,8 @@ const std::vector<std::string>& known_syntheses() {
 
 void check_options(const BenchOptions& o, const TransferFn& transfer) {
   if (o.runs < 1) throw Error("har-bench: runs must be at least 1, found " + std::to_string(o.runs));
+  if (o.ensemble < 1)
+    throw Error("har-bench: ensemble must be at least 1 classifier, found " + std::to_string(o.ensemble));
   if (o.stride < 1) throw Error("har-bench: stride must be at least 1, found " + std::to_string(o.stride));
   if (o.recorded_bodies < 1 || o.bodies_per_band < 1)
     throw Error("har-bench: need at least 1 recorded body and 1 body per deployment band");
@@ -172,17 +174,20 @@ struct Synthesis {
   Windows extra;
 };
 
-// One classifier's outcome on the test windows.
+// One run's outcome on the test windows.
 struct RunScore {
   ClassificationReport report;
   std::vector<double> body_f1;  // [D]
 };
 
-RunScore score_run(const PreparedWindows& inputs, const std::vector<int>& labels, const Windows& test,
-                   const std::vector<int>& truth, int classes, int deployment_bodies, const ClassifierOptions& co) {
-  WindowClassifier net(inputs.channels, inputs.rows, inputs.cols, classes, co);
-  net.train(inputs, labels);
-  const std::vector<int> predicted = net.predict(test.inputs);
+// A run's ensemble: its members' probabilities [N x C] averaged, scored on
+// the test windows overall and per deployment body.
+RunScore score_run(const std::vector<const std::vector<float>*>& members, const Windows& test,
+                   const std::vector<int>& truth, int classes, int deployment_bodies) {
+  std::vector<float> mean(members.front()->size(), 0.0f);
+  for (const std::vector<float>* m : members)
+    for (std::size_t i = 0; i < mean.size(); ++i) mean[i] += (*m)[i] / float(members.size());
+  const std::vector<int> predicted = argmax_rows(mean, classes);
   RunScore r{classification_report(truth, predicted, classes), {}};
   for (int d = 0; d < deployment_bodies; ++d) {
     std::vector<int> t, p;
@@ -242,21 +247,34 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
     labels[std::size_t(s)].insert(labels[std::size_t(s)].end(), more.begin(), more.end());
   }
   const int workers = o.workers > 0 ? o.workers : int(std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<RunScore> runs(std::size_t(ns * o.runs));
+  const int members = o.runs * o.ensemble;  // classifiers per source
+  std::vector<std::vector<float>> probabilities(std::size_t(ns * members));  // [source, run, member][N x C]
   std::mutex say_mutex;
   int done = 0;
-  run_tasks(ns * o.runs, workers, [&](int i) {
-    const int s = i / o.runs, run = i % o.runs;
+  run_tasks(ns * members, workers, [&](int i) {
+    const int s = i / members, member = i % members;
     ClassifierOptions co = o.classifier;
-    co.seed = o.classifier.seed + std::uint64_t(run);
+    co.seed = o.classifier.seed + std::uint64_t(member);
     if (workers > 1) co.threads = 1;
-    runs[std::size_t(i)] = score_run(inputs[std::size_t(s)], labels[std::size_t(s)], test, truth, nc,
-                                     deployment_bodies, co);
+    WindowClassifier net(inputs[std::size_t(s)].channels, inputs[std::size_t(s)].rows, inputs[std::size_t(s)].cols,
+                         nc, co);
+    net.train(inputs[std::size_t(s)], labels[std::size_t(s)]);
+    probabilities[std::size_t(i)] = net.probabilities(test.inputs);
+    const double f1 = classification_report(truth, argmax_rows(probabilities[std::size_t(i)], nc), nc).macro_f1;
     const std::lock_guard<std::mutex> lock(say_mutex);
-    say(o, "har-bench: [" + t.labels + " labels " + std::to_string(++done) + "/" + std::to_string(ns * o.runs) +
-               "] " + sources[std::size_t(s)].name + " run " + std::to_string(run + 1) + ": macro F1 " +
-               fixed_text(runs[std::size_t(i)].report.macro_f1));
+    say(o, "har-bench: [" + t.labels + " labels " + std::to_string(++done) + "/" + std::to_string(ns * members) +
+               "] " + sources[std::size_t(s)].name + " run " + std::to_string(member / o.ensemble + 1) +
+               (o.ensemble > 1 ? " member " + std::to_string(member % o.ensemble + 1) : "") + ": macro F1 " +
+               fixed_text(f1));
   });
+  std::vector<RunScore> runs;  // [source, run]
+  for (int s = 0; s < ns; ++s)
+    for (int run = 0; run < o.runs; ++run) {
+      std::vector<const std::vector<float>*> ensemble;
+      for (int k = 0; k < o.ensemble; ++k)
+        ensemble.push_back(&probabilities[std::size_t(s * members + run * o.ensemble + k)]);
+      runs.push_back(score_run(ensemble, test, truth, nc, deployment_bodies));
+    }
 
   for (int s = 0; s < ns; ++s) {
     BenchSource r;
@@ -276,6 +294,11 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
     r.sd = sd_of(r.macro_f1);
     t.sources.push_back(r);
   }
+  for (const BenchSource& a : t.sources)
+    for (const BenchSource& b : t.sources)
+      if (a.name.rfind("model", 0) == 0 && b.name != "recorded" && b.name != "oracle" &&
+          b.name.rfind("model", 0) != 0)
+        t.comparisons.push_back(compare_runs(a, b));
   const double floor = t.sources.front().mean, ceiling = t.sources.back().mean;
   t.gap = ceiling - floor;
   for (std::size_t i = 0; i < t.sources.size(); ++i)
@@ -287,56 +310,82 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
 
 }  // namespace
 
-BenchResult run_bench(const BenchOptions& o, const TransferFn& transfer) {
-  const auto t0 = Clock::now();
-  check_options(o, transfer);
-  BenchResult r;
-  r.mocap = o.mocap.empty() ? "procedural" : o.mocap;
-  r.runs = o.runs;
-  const BenchClips clips = load_bench_clips(o);
-  if (!o.model_data.empty()) check_bench_training_set(o.model_data, clips);
-  r.activities = clips.activities;
-  r.left_out = clips.left_out;
-  r.clips = int(clips.clips.size());
-  r.recorded = band_bodies(body_band("mid"), o.recorded_bodies, o.seed, "rec", "original");
-  for (const std::string& band : o.deployment_bands)
-    for (BodySpec b : band_bodies(body_band(band), o.bodies_per_band, o.seed, band + "-", "original"))
-      r.deployment.push_back(b);
-  const int R = int(r.recorded.size()), D = int(r.deployment.size());
+BenchComparison compare_runs(const BenchSource& source, const BenchSource& baseline) {
+  if (source.macro_f1.size() != baseline.macro_f1.size() || source.macro_f1.empty())
+    throw Error("har-bench: cannot compare " + std::to_string(source.macro_f1.size()) + " runs of " + source.name +
+                " with " + std::to_string(baseline.macro_f1.size()) + " of " + baseline.name);
+  BenchComparison c{source.name, baseline.name, 0, 0, std::max(source.sd, baseline.sd), 0};
+  std::vector<double> d;
+  for (std::size_t run = 0; run < source.macro_f1.size(); ++run) {
+    d.push_back(source.macro_f1[run] - baseline.macro_f1[run]);
+    c.wins += d.back() > 0;
+  }
+  c.difference = mean_of(d);
+  c.paired_sd = sd_of(d);
+  return c;
+}
 
-  // 1. both populations, read by the degraded mat.
-  SimOptions sim = standin_sim_options(o.sensor);
-  const std::vector<float> gain = standin_gain_map(sim.mat, o.sensor);
-  say(o, "har-bench: simulating " + std::to_string(r.clips) + " clips (" + join(r.activities) + ") on " +
-             std::to_string(R) + " recorded and " + std::to_string(D) + " deployment bodies");
-  const auto rec = simulate_population(clips, r.recorded, sim, gain, o);
-  const auto dep = simulate_population(clips, r.deployment, sim, gain, o);
-  r.simulate_seconds = since(t0);
+namespace {
 
-  // 2. windows: recorded training parts; deployment training parts (the
-  // oracle) and test parts.
+// The populations' simulations ([clip][body] sequences [T, H, W]) and the
+// mat that read them.
+struct Populations {
+  SimOptions sim;
+  std::vector<float> gain;  // [H x W] the mat's per-cell gains
+  std::vector<std::vector<PressureSequence>> recorded, deployment;
+};
+
+// The real windows: recorded bodies' training parts; deployment bodies'
+// training parts (the oracle) and test parts. first_window[c][j]: recorded
+// body j's first window of clip c.
+struct RealWindows {
   Windows recorded, oracle, test;
-  std::vector<std::vector<int>> first_window(clips.clips.size(), std::vector<int>(std::size_t(R), 0));
+  std::vector<std::vector<int>> first_window;
+};
+
+RealWindows cut_windows(const BenchClips& clips, const Populations& p, const BenchResult& r, const BenchOptions& o) {
+  const int R = int(r.recorded.size()), D = int(r.deployment.size());
+  RealWindows w;
+  w.first_window.assign(clips.clips.size(), std::vector<int>(std::size_t(R), 0));
   for (std::size_t c = 0; c < clips.clips.size(); ++c) {
     const BenchClip& clip = clips.clips[c];
     for (int j = 0; j < R; ++j) {
-      first_window[c][std::size_t(j)] = recorded.count();
-      add_windows(rec[c][std::size_t(j)], 0, clip.split.train_end, o, clip.label, -1, r.recorded[std::size_t(j)].id,
-                  true, recorded);
+      w.first_window[c][std::size_t(j)] = w.recorded.count();
+      add_windows(p.recorded[c][std::size_t(j)], 0, clip.split.train_end, o, clip.label, -1,
+                  r.recorded[std::size_t(j)].id, true, w.recorded);
     }
     for (int d = 0; d < D; ++d) {
-      const PressureSequence& s = dep[c][std::size_t(d)];
-      add_windows(s, 0, clip.split.train_end, o, clip.label, d, r.deployment[std::size_t(d)].id, true, oracle);
-      add_windows(s, clip.split.test_begin, clip.split.frames, o, clip.label, d, r.deployment[std::size_t(d)].id,
-                  true, test);
+      const PressureSequence& s = p.deployment[c][std::size_t(d)];
+      const std::string& id = r.deployment[std::size_t(d)].id;
+      add_windows(s, 0, clip.split.train_end, o, clip.label, d, id, true, w.oracle);
+      add_windows(s, clip.split.test_begin, clip.split.frames, o, clip.label, d, id, true, w.test);
     }
   }
-  r.recorded_windows = recorded.count();
-  r.test_windows = test.count();
+  return w;
+}
 
-  // 3. syntheses: clip c's training part of recorded body (c + d) mod R
-  // made into deployment body d's, as many windows as the oracle's.
-  const auto t1 = Clock::now();
+// One training source's version of a recorded training part for body `to`.
+PressureSequence synthesise(const std::string& name, const PressureSequence& part, const PressureSequence& transferred,
+                            const BodySpec& from, const BodySpec& to, const std::string& motion_id,
+                            const Populations& p, const BenchOptions& o) {
+  const auto read = [&](PressureSequence s) {
+    read_again(s, p.gain, p.sim.sensor, sequence_seed(o.seed, motion_id + "__" + to.id + "/read"));
+    return s;
+  };
+  if (name == "model") return read(transferred);
+  if (name == "model-mean") return transferred;
+  if (name == "copy") return copy_baseline(part);
+  if (name == "weight-ratio") return weight_ratio_baseline(part, from.weight_kg, to.weight_kg);
+  PressureSequence s = body_scale_baseline(part, from, to);
+  return name == "body-scale-read" ? read(std::move(s)) : s;
+}
+
+// The training sources: recorded, one per synthesis, oracle. A synthesis
+// makes clip c's training part of recorded body (c + d) mod R into
+// deployment body d's: as many windows as the oracle's.
+std::vector<Synthesis> synthesise_sources(const BenchClips& clips, const Populations& p, const RealWindows& real,
+                                          const BenchResult& r, const BenchOptions& o, const TransferFn& transfer) {
+  const int R = int(r.recorded.size()), D = int(r.deployment.size());
   std::vector<Synthesis> sources;
   sources.push_back({"recorded", {}});
   for (const std::string& name : o.syntheses) sources.push_back({name, {}});
@@ -347,7 +396,7 @@ BenchResult run_bench(const BenchOptions& o, const TransferFn& transfer) {
     for (int d = 0; d < D; ++d) {
       const int j = int((c + std::size_t(d)) % std::size_t(R));
       const BodySpec &from = r.recorded[std::size_t(j)], &to = r.deployment[std::size_t(d)];
-      const PressureSequence part = head(rec[c][std::size_t(j)], clip.split.train_end);  // never the test part
+      const PressureSequence part = head(p.recorded[c][std::size_t(j)], clip.split.train_end);  // never the test part
       PressureSequence transferred;
       if (transfers) {
         transferred = transfer(part, from, to);
@@ -356,56 +405,86 @@ BenchResult run_bench(const BenchOptions& o, const TransferFn& transfer) {
                       std::to_string(transferred.frames()) + " frames, expected " + std::to_string(part.frames()));
       }
       for (std::size_t k = 1; k < sources.size(); ++k) {
-        const std::string& name = sources[k].name;
-        PressureSequence s;
-        if (name == "model") {
-          s = transferred;
-          read_again(s, gain, sim.sensor, sequence_seed(o.seed, clip.source.meta.motion_id + "__" + to.id + "/read"));
-        } else if (name == "model-mean") {
-          s = transferred;
-        } else if (name == "copy") {
-          s = copy_baseline(part);
-        } else if (name == "weight-ratio") {
-          s = weight_ratio_baseline(part, from.weight_kg, to.weight_kg);
-        } else {
-          s = body_scale_baseline(part, from, to);
-          if (name == "body-scale-read")
-            read_again(s, gain, sim.sensor, sequence_seed(o.seed, clip.source.meta.motion_id + "__" + to.id + "/read"));
-        }
+        const PressureSequence s =
+            synthesise(sources[k].name, part, transferred, from, to, clip.source.meta.motion_id, p, o);
         Windows& w = sources[k].extra;
         const int before = w.count();
         add_windows(s, 0, clip.split.train_end, o, clip.label, d, to.id, false, w);
-        for (int i = 0; i < w.count() - before; ++i) w.source.push_back(first_window[c][std::size_t(j)] + i);
+        for (int i = 0; i < w.count() - before; ++i) w.source.push_back(real.first_window[c][std::size_t(j)] + i);
       }
     }
     if (transfers && ((c + 1) % 10 == 0 || c + 1 == clips.clips.size()))
       say(o, "har-bench: transferred " + std::to_string(c + 1) + "/" + std::to_string(clips.clips.size()) +
                  " clips onto " + std::to_string(D) + " deployment bodies");
   }
-  sources.push_back({"oracle", oracle});
-  r.synthetic_windows = oracle.count();
+  sources.push_back({"oracle", real.oracle});
+  return sources;
+}
+
+// The pseudo-label table (when mean shift finds 2+ clusters): synthesised
+// windows take their source window's label.
+void add_pseudo_table(std::vector<Synthesis>& sources, RealWindows& real, BenchResult& r, const BenchOptions& o) {
+  std::string summary;
+  const int k = fit_pseudo_labels({&real.recorded, &sources.back().extra, &real.test}, o, summary);
+  say(o, "har-bench: pseudo labels: " + summary);
+  if (k < 2) {
+    r.left_out.push_back("pseudo labels: mean shift found a single cluster");
+    return;
+  }
+  for (std::size_t s = 1; s + 1 < sources.size(); ++s)
+    for (int src : sources[s].extra.source) sources[s].extra.pseudo.push_back(real.recorded.pseudo[std::size_t(src)]);
+  std::vector<std::string> names;
+  for (int c = 0; c < k; ++c) names.push_back("cluster " + std::to_string(c));
+  r.tables.push_back(score_table(sources, real.recorded, real.test, true, names, int(r.deployment.size()), o));
+}
+
+}  // namespace
+
+BenchResult run_bench(const BenchOptions& o, const TransferFn& transfer) {
+  const auto t0 = Clock::now();
+  check_options(o, transfer);
+  BenchResult r;
+  r.mocap = o.mocap.empty() ? "procedural" : o.mocap;
+  r.runs = o.runs;
+  r.ensemble = o.ensemble;
+  const BenchClips clips = load_bench_clips(o);
+  if (!o.model_data.empty()) check_bench_training_set(o.model_data, clips);
+  r.activities = clips.activities;
+  r.left_out = clips.left_out;
+  r.clips = int(clips.clips.size());
+  r.recorded = band_bodies(body_band("mid"), o.recorded_bodies, o.seed, "rec", "original");
+  for (const std::string& band : o.deployment_bands)
+    for (BodySpec b : band_bodies(body_band(band), o.bodies_per_band, o.seed, band + "-", "original"))
+      r.deployment.push_back(b);
+
+  // 1. both populations, read by the degraded mat.
+  Populations p{standin_sim_options(o.sensor), {}, {}, {}};
+  p.gain = standin_gain_map(p.sim.mat, o.sensor);
+  say(o, "har-bench: simulating " + std::to_string(r.clips) + " clips (" + join(r.activities) + ") on " +
+             std::to_string(r.recorded.size()) + " recorded and " + std::to_string(r.deployment.size()) +
+             " deployment bodies");
+  p.recorded = simulate_population(clips, r.recorded, p.sim, p.gain, o);
+  p.deployment = simulate_population(clips, r.deployment, p.sim, p.gain, o);
+  r.simulate_seconds = since(t0);
+
+  // 2. windows, 3. the training sources.
+  RealWindows real = cut_windows(clips, p, r, o);
+  r.recorded_windows = real.recorded.count();
+  r.test_windows = real.test.count();
+  const auto t1 = Clock::now();
+  std::vector<Synthesis> sources = synthesise_sources(clips, p, real, r, o, transfer);
+  r.synthetic_windows = real.oracle.count();
   r.transfer_seconds = since(t1);
 
   // 4. classifiers per label kind and source.
   const auto t2 = Clock::now();
   say(o, "har-bench: " + std::to_string(r.recorded_windows) + " recorded training windows, " +
              std::to_string(r.synthetic_windows) + " per synthesis, " + std::to_string(r.test_windows) +
-             " test windows; " + std::to_string(o.runs) + " classifiers per source");
-  r.tables.push_back(score_table(sources, recorded, test, false, r.activities, D, o));
-  if (o.pseudo_labels) {
-    std::string summary;
-    const int k = fit_pseudo_labels({&recorded, &sources.back().extra, &test}, o, summary);
-    say(o, "har-bench: pseudo labels: " + summary);
-    if (k < 2) {
-      r.left_out.push_back("pseudo labels: mean shift found a single cluster");
-    } else {
-      for (std::size_t s = 1; s + 1 < sources.size(); ++s)
-        for (int src : sources[s].extra.source) sources[s].extra.pseudo.push_back(recorded.pseudo[std::size_t(src)]);
-      std::vector<std::string> names;
-      for (int c = 0; c < k; ++c) names.push_back("cluster " + std::to_string(c));
-      r.tables.push_back(score_table(sources, recorded, test, true, names, D, o));
-    }
-  }
+             " test windows; " + std::to_string(o.runs) + " runs per source of " + std::to_string(o.ensemble) +
+             (o.ensemble > 1 ? " classifiers each" : " classifier each"));
+  r.tables.push_back(
+      score_table(sources, real.recorded, real.test, false, r.activities, int(r.deployment.size()), o));
+  if (o.pseudo_labels) add_pseudo_table(sources, real, r, o);
   r.classify_seconds = since(t2);
   r.seconds = since(t0);
   return r;

@@ -23,14 +23,58 @@ std::string percent(double fraction) {
   return std::isfinite(fraction) ? std::to_string(int(std::lround(100 * fraction))) + " %" : "-";
 }
 
-// The source a reader compares the model with: the best baseline present
-// (not recorded, oracle or a model source), by mean macro F1.
-const BenchSource* best_baseline(const BenchTable& t) {
-  const BenchSource* best = nullptr;
-  for (const BenchSource& s : t.sources)
-    if (s.name != "recorded" && s.name != "oracle" && s.name.rfind("model", 0) != 0 && (!best || s.mean > best->mean))
-      best = &s;
-  return best;
+// "+0.018 (2.0 paired sd; higher in 9 of 10 runs; 1.1 run sd)".
+std::string comparison_text(const BenchComparison& c) {
+  const auto ratio = [&](double sd) { return sd > 0 ? fixed_text(c.difference / sd, 1) : std::string("-"); };
+  return (c.difference >= 0 ? "+" : "") + fixed_text(c.difference) + " (" + ratio(c.paired_sd) +
+         " paired sd; higher in " + std::to_string(c.wins) + " runs; " + ratio(c.run_sd) + " run sd)";
+}
+
+// " (each an ensemble of K classifiers)", or nothing for one classifier a run.
+std::string ensemble_text(const BenchResult& r) {
+  return r.ensemble > 1 ? " (each an ensemble of " + std::to_string(r.ensemble) + " classifiers)" : "";
+}
+
+// A table's per-class F1, per-body macro F1 and confusions (HTML).
+void write_detail_tables(std::ostringstream& b, const BenchTable& t, const BenchResult& r) {
+  b << "<h3>Per-class F1 (mean over runs)</h3>\n<table><tr><th>class (test windows)</th>";
+  for (const BenchSource& s : t.sources) b << "<th>" << html_escape(s.name) << "</th>";
+  b << "</tr>\n";
+  for (std::size_t c = 0; c < t.classes.size(); ++c) {
+    b << "<tr><td>" << html_escape(t.classes[c]) << " (" << t.test_support[c] << ")</td>";
+    for (const BenchSource& s : t.sources) b << "<td class=\"num\">" << fixed_text(s.class_f1[c]) << "</td>";
+    b << "</tr>\n";
+  }
+  b << "</table>\n<h3>Macro F1 per deployment body (mean over runs)</h3>\n<table><tr><th>body</th>";
+  for (const BenchSource& s : t.sources) b << "<th>" << html_escape(s.name) << "</th>";
+  b << "</tr>\n";
+  for (std::size_t d = 0; d < r.deployment.size(); ++d) {
+    b << "<tr><td>" << html_escape(body_text(r.deployment[d])) << "</td>";
+    for (const BenchSource& s : t.sources) {
+      double m = 0;
+      for (double v : s.body_f1[d]) m += v / double(s.body_f1[d].size());
+      b << "<td class=\"num\">" << fixed_text(m) << "</td>";
+    }
+    b << "</tr>\n";
+  }
+  b << "</table>\n<h3>Confusion (summed over runs; rows true, columns predicted)</h3>\n<div class=\"charts\">\n";
+  for (const BenchSource& s : t.sources) {
+    b << "<table class=\"confusion\"><caption>" << html_escape(s.name) << "</caption>\n<tr><th>true \\ predicted</th>";
+    for (const std::string& c : t.classes) b << "<th>" << html_escape(c) << "</th>";
+    b << "</tr>\n";
+    for (int i = 0; i < s.confusion.rows(); ++i) {
+      b << "<tr><th>" << html_escape(t.classes[std::size_t(i)]) << "</th>";
+      const double total = std::max(1, s.confusion.row(i).sum());
+      for (int k = 0; k < s.confusion.cols(); ++k) {
+        const double share = s.confusion(i, k) / total;
+        b << "<td class=\"num\" style=\"background: rgba(8, 48, 107, " << fixed_text(share, 2) << ")"
+          << (share > 0.5 ? "; color: #fff" : "") << "\">" << s.confusion(i, k) << "</td>";
+      }
+      b << "</tr>\n";
+    }
+    b << "</table>\n";
+  }
+  b << "</div>\n";
 }
 
 }  // namespace
@@ -39,7 +83,7 @@ std::string format_bench(const BenchResult& r) {
   std::ostringstream o;
   for (const BenchTable& t : r.tables) {
     o << "Macro F1 on the deployment bodies' test windows (" << t.labels << " labels, " << t.classes.size()
-      << " classes), mean +- sd over " << r.runs << " runs\n";
+      << " classes), mean +- sd over " << r.runs << " runs" << ensemble_text(r) << "\n";
     o << "  source          macro F1        gap closed  training windows\n";
     for (const BenchSource& s : t.sources) {
       char line[160];
@@ -48,13 +92,8 @@ std::string format_bench(const BenchResult& r) {
       o << line;
     }
     o << "  gap (oracle - recorded): " << fixed_text(t.gap) << "\n";
-    const BenchSource* base = best_baseline(t);
-    for (const BenchSource& s : t.sources)
-      if ((s.name == "model" || s.name == "model-mean") && base) {
-        const double sd = std::max(s.sd, base->sd);
-        o << "  " << s.name << " - " << base->name << " (best baseline): " << fixed_text(s.mean - base->mean)
-          << " = " << fixed_text(sd > 0 ? (s.mean - base->mean) / sd : 0.0, 1) << " sd\n";
-      }
+    for (const BenchComparison& c : t.comparisons)
+      o << "  " << c.source << " - " << c.baseline << ": " << comparison_text(c) << "\n";
     o << "\n";
   }
   return o.str();
@@ -67,6 +106,7 @@ std::string bench_json(const BenchResult& r) {
   j["left_out"] = r.left_out;
   j["clips"] = r.clips;
   j["runs"] = r.runs;
+  j["ensemble"] = r.ensemble;
   j["windows"] = {{"recorded", r.recorded_windows}, {"per_synthesis", r.synthetic_windows}, {"test", r.test_windows}};
   for (const auto* pop : {&r.recorded, &r.deployment}) {
     nlohmann::json bodies = nlohmann::json::array();
@@ -95,6 +135,14 @@ std::string bench_json(const BenchResult& r) {
                                {"body_f1", s.body_f1},
                                {"confusion", confusion}});
     }
+    jt["comparisons"] = nlohmann::json::array();
+    for (const BenchComparison& c : t.comparisons)
+      jt["comparisons"].push_back({{"source", c.source},
+                                   {"baseline", c.baseline},
+                                   {"difference", c.difference},
+                                   {"paired_sd", c.paired_sd},
+                                   {"run_sd", c.run_sd},
+                                   {"wins", c.wins}});
     j["tables"].push_back(jt);
   }
   j["seconds"] = {{"simulate", r.simulate_seconds},
@@ -112,7 +160,7 @@ std::vector<std::string> write_bench_report(const std::string& out_dir, const Be
     << " clips of " << r.activities.size() << " activities (" << html_escape(join(r.activities)) << "). "
     << r.recorded_windows << " recorded training windows, " << r.synthetic_windows
     << " added per training source, " << r.test_windows << " test windows of the deployment bodies; " << r.runs
-    << " seeded classifiers per source. Every number: <a href=\"results.json\">results.json</a>.</p>\n"
+    << " seeded runs per source" << ensemble_text(r) << ". Every number: <a href=\"results.json\">results.json</a>.</p>\n"
     << "<img src=\"f1.svg\" alt=\"macro F1 per training source with its spread\">\n";
   BarChart chart;
   chart.title = "Macro F1 on the deployment bodies (whiskers: +- 1 sd over runs)";
@@ -136,45 +184,14 @@ std::vector<std::string> write_bench_report(const std::string& out_dir, const Be
     }
     b << "</table>\n";
     chart.series.push_back(series);
+    if (!t.comparisons.empty()) {
+      b << "<p>Run by run (run r of every source trains from the same seeds):</p>\n<ul>\n";
+      for (const BenchComparison& c : t.comparisons)
+        b << "<li>" << html_escape(c.source + " - " + c.baseline + ": " + comparison_text(c)) << "</li>\n";
+      b << "</ul>\n";
+    }
 
-    b << "<h3>Per-class F1 (mean over runs)</h3>\n<table><tr><th>class (test windows)</th>";
-    for (const BenchSource& s : t.sources) b << "<th>" << html_escape(s.name) << "</th>";
-    b << "</tr>\n";
-    for (std::size_t c = 0; c < t.classes.size(); ++c) {
-      b << "<tr><td>" << html_escape(t.classes[c]) << " (" << t.test_support[c] << ")</td>";
-      for (const BenchSource& s : t.sources) b << "<td class=\"num\">" << fixed_text(s.class_f1[c]) << "</td>";
-      b << "</tr>\n";
-    }
-    b << "</table>\n<h3>Macro F1 per deployment body (mean over runs)</h3>\n<table><tr><th>body</th>";
-    for (const BenchSource& s : t.sources) b << "<th>" << html_escape(s.name) << "</th>";
-    b << "</tr>\n";
-    for (std::size_t d = 0; d < r.deployment.size(); ++d) {
-      b << "<tr><td>" << html_escape(body_text(r.deployment[d])) << "</td>";
-      for (const BenchSource& s : t.sources) {
-        double m = 0;
-        for (double v : s.body_f1[d]) m += v / double(s.body_f1[d].size());
-        b << "<td class=\"num\">" << fixed_text(m) << "</td>";
-      }
-      b << "</tr>\n";
-    }
-    b << "</table>\n<h3>Confusion (summed over runs; rows true, columns predicted)</h3>\n<div class=\"charts\">\n";
-    for (const BenchSource& s : t.sources) {
-      b << "<table class=\"confusion\"><caption>" << html_escape(s.name) << "</caption>\n<tr><th>true \\ predicted</th>";
-      for (const std::string& c : t.classes) b << "<th>" << html_escape(c) << "</th>";
-      b << "</tr>\n";
-      for (int i = 0; i < s.confusion.rows(); ++i) {
-        b << "<tr><th>" << html_escape(t.classes[std::size_t(i)]) << "</th>";
-        const double total = std::max(1, s.confusion.row(i).sum());
-        for (int k = 0; k < s.confusion.cols(); ++k) {
-          const double share = s.confusion(i, k) / total;
-          b << "<td class=\"num\" style=\"background: rgba(8, 48, 107, " << fixed_text(share, 2) << ")"
-            << (share > 0.5 ? "; color: #fff" : "") << "\">" << s.confusion(i, k) << "</td>";
-        }
-        b << "</tr>\n";
-      }
-      b << "</table>\n";
-    }
-    b << "</div>\n";
+    write_detail_tables(b, t, r);
   }
   b << "<h2>Bodies</h2>\n<p>Recorded: ";
   for (const BodySpec& x : r.recorded) b << html_escape(body_text(x)) << "; ";

@@ -205,11 +205,11 @@ double WindowClassifier::train(const PreparedWindows& inputs, const std::vector<
   return last;
 }
 
-std::vector<int> WindowClassifier::predict(const PreparedWindows& inputs) const {
+std::vector<float> WindowClassifier::probabilities(const PreparedWindows& inputs) const {
   Impl& m = *impl_;
   m.check(inputs);
   const int n = inputs.count();
-  std::vector<int> out(n, 0);
+  std::vector<float> out(std::size_t(n) * std::size_t(m.classes), 0.0f);
   if (n == 0) return out;
   torch::NoGradGuard g;
   m.use_threads();
@@ -219,11 +219,15 @@ std::vector<int> WindowClassifier::predict(const PreparedWindows& inputs) const 
   for (int start = 0; start < n; start += kChunk) {
     const int count = std::min(kChunk, n - start);
     torch::Tensor xb = ((x.narrow(0, start, count) - m.mean) / m.scale).to(m.device);
-    torch::Tensor pred = m.net->forward(xb).argmax(1).to(torch::kCPU).to(torch::kInt64);
-    auto acc = pred.accessor<int64_t, 1>();
-    for (int i = 0; i < count; ++i) out[start + i] = int(acc[i]);
+    torch::Tensor p = torch::softmax(m.net->forward(xb), 1).to(torch::kCPU).contiguous();
+    std::copy(p.data_ptr<float>(), p.data_ptr<float>() + p.numel(),
+              out.begin() + std::ptrdiff_t(start) * m.classes);
   }
   return out;
+}
+
+std::vector<int> WindowClassifier::predict(const PreparedWindows& inputs) const {
+  return argmax_rows(probabilities(inputs), impl_->classes);
 }
 
 }  // namespace ptnet::har

@@ -1,10 +1,23 @@
 // Classification metrics (ptnet/har.hpp): confusion matrix, per-class
 // precision / recall / F1, macro F1 as scikit-learn computes it with
 // labels=None and zero_division=0, accuracy.
+#include <algorithm>
+
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 
 namespace ptnet::har {
+
+std::vector<int> argmax_rows(const std::vector<float>& scores, int columns) {
+  if (columns < 1 || scores.size() % std::size_t(columns) != 0)
+    throw Error("metrics: " + std::to_string(scores.size()) + " scores are not rows of " + std::to_string(columns));
+  std::vector<int> out(scores.size() / std::size_t(columns));
+  for (std::size_t r = 0; r < out.size(); ++r) {
+    const float* row = scores.data() + r * std::size_t(columns);
+    out[r] = int(std::max_element(row, row + columns) - row);
+  }
+  return out;
+}
 
 ClassificationReport classification_report(const std::vector<int>& truth,
                                             const std::vector<int>& predicted, int classes) {
