@@ -26,6 +26,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "command.hpp"
@@ -47,6 +48,32 @@ std::string first_word(const CLI::Option& quiet, int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (!quiet.check_name(argv[i])) return argv[i];
   return std::string();
+}
+
+// The flag that sets an option field a library message names (ptnet/error.hpp,
+// field_text) in `command`: "micro_batch" -> "--micro-batch", but for the
+// flags named otherwise than their field.
+std::string flag_of(const std::string& command, std::string_view field) {
+  struct Renamed {
+    std::string_view command, field, flag;  // command "": every command
+  };
+  static constexpr Renamed kRenamed[] = {
+      {"", "dist_timeout_s", "--dist-timeout"},
+      {"evaluate", "threshold_kpa", "--threshold"},
+      {"render", "sequences", "--sequence"},
+  };
+  for (const Renamed& r : kRenamed)
+    if (r.field == field && (r.command.empty() || r.command == command)) return std::string(r.flag);
+  std::string flag = "--";
+  for (char c : field) flag += c == '_' ? '-' : c;
+  return flag;
+}
+
+// An Error as the command line says it: option fields as flags.
+std::string cli_text(const ptnet::Error& e, const CLI::App& app) {
+  const std::vector<CLI::App*> run = app.get_subcommands();
+  const std::string command = run.empty() ? std::string() : run.front()->get_name();
+  return ptnet::one_line(e.text([&](std::string_view field) { return flag_of(command, field); }));
 }
 
 bool is_command(const CLI::App& app, const std::string& word) {
@@ -126,7 +153,7 @@ int main(int argc, char** argv) {
     std::cerr << "ptnet: error: " << ptnet::one_line(e.what()) << " (ptnet --help)\n";
     return 2;
   } catch (const ptnet::Error& e) {
-    std::cerr << "ptnet: error: " << ptnet::one_line(e.what()) << "\n";
+    std::cerr << "ptnet: error: " << cli_text(e, app) << "\n";
     return 1;
 #if PTNET_WITH_TORCH
   } catch (const c10::Error& e) {

@@ -7,13 +7,13 @@
 //   q = ptnet.Transfer("model/").run(p, source=("female", 165, 60), target=("male", 185, 95))
 //   print(ptnet.rmse(q, p), ptnet.binary_r2(q, p))
 //
-// Errors: a ptnet::Error becomes OSError when it is about a file that cannot
-// be found, opened, read or written, ValueError otherwise; the message is the
-// CLI's one line (without its "ptnet: error: " prefix). Long calls (read_bvh,
+// Errors: a ptnet::Error becomes the exception its kind names
+// (FileNotFoundError, FileExistsError, OSError for other file failures,
+// ValueError for bad input); the message is the library's one line, which is
+// the CLI's without its "ptnet: error: " prefix except that it names option
+// fields as the library does ("force", not "--force"). Long calls (read_bvh,
 // generate_motion, simulate, Transfer, run, export) release the GIL.
 #include <c10/util/Exception.h>
-
-#include <string_view>
 
 #include "module.hpp"
 #include "ptnet/error.hpp"
@@ -22,21 +22,26 @@
 namespace ptnet::python {
 namespace {
 
-// Messages of the library's file errors ("FILE: no such file", "FILE: cannot
-// open: ...", "FOLDER: cannot create folder: ...").
-bool about_a_file(std::string_view message) {
-  for (const char* phrase : {": no such file", ": no such model folder", ": cannot open", ": cannot read",
-                             ": cannot write", ": cannot create", " does not exist", "permission denied"})
-    if (message.find(phrase) != std::string_view::npos) return true;
-  return false;
+PyObject* exception_of(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::not_found:
+      return PyExc_FileNotFoundError;
+    case ErrorKind::exists:
+      return PyExc_FileExistsError;
+    case ErrorKind::io:
+      return PyExc_OSError;
+    case ErrorKind::invalid:
+    case ErrorKind::format:
+      break;
+  }
+  return PyExc_ValueError;
 }
 
 void translate(std::exception_ptr p) {
   try {
     if (p) std::rethrow_exception(p);
   } catch (const Error& e) {
-    const std::string text = one_line(e.what());
-    PyErr_SetString(about_a_file(text) ? PyExc_OSError : PyExc_ValueError, text.c_str());
+    PyErr_SetString(exception_of(e.kind()), one_line(e.what()).c_str());
   } catch (const c10::Error& e) {
     PyErr_SetString(PyExc_RuntimeError, one_line(e.what_without_backtrace()).c_str());
   }

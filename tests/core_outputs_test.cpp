@@ -51,7 +51,7 @@ TEST(Outputs, AFifoIsNeverReplacedEvenWithForce) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   for (bool force : {false, true}) {
     EXPECT_EQ(error_of([&] { write_text_file(fifo, "x", force); }),
-              fifo + ": is a FIFO, not a regular file; refusing to replace it (even with --force)");
+              fifo + ": is a FIFO, not a regular file; refusing to replace it (even with force)");
     struct stat st;
     ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
     EXPECT_TRUE(S_ISFIFO(st.st_mode));
@@ -67,7 +67,8 @@ TEST(Outputs, AFolderIsNeverReplaced) {
   TempDir d("out_folder");
   fs::create_directories(d.path / "sub");
   EXPECT_EQ(error_of([&] { write_text_file(d.file("sub"), "x", true); }),
-            d.file("sub") + ": is a folder, not a regular file; refusing to replace it (even with --force)");
+            d.file("sub") +
+                ": is a folder, not a regular file; refusing to replace it (even with force)");
   EXPECT_TRUE(fs::is_directory(d.path / "sub"));
 }
 
@@ -78,7 +79,7 @@ TEST(Outputs, AnInputIsNeverReplacedWhateverItsName) {
   note_input(in);
   EXPECT_EQ(error_of([&] { write_text_file(in, "new", true); }),
             in + ": is the same file as the input " + in +
-                "; refusing to replace it (even with --force): write the output elsewhere");
+                "; refusing to replace it (even with force): write the output elsewhere");
   // A hard link and a symbolic link are the same file under another name.
   fs::create_hard_link(in, d.file("hard.csv"));
   fs::create_symlink(in, d.file("soft.csv"));

@@ -245,7 +245,7 @@ TEST(Dataset, RefusesToOverwriteWithoutForce) {
   testing_util::write_small_dataset(path);
   auto before = slurp(path);
   EXPECT_EQ(error_of([&] { testing_util::write_small_dataset(path); }),
-            path + ": exists; pass --force to overwrite");
+            path + ": exists; pass force to overwrite");
   EXPECT_EQ(slurp(path), before);
   testing_util::write_small_dataset(path, 40, 6, /*force=*/true);
   EXPECT_EQ(Dataset::open(path).sequence("walk_a__b1").frames, 40);

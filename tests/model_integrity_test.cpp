@@ -147,7 +147,8 @@ TEST_F(IntegrityTest, AFrameRateMismatchIsAnError) {
   s.fps = 60;
   EXPECT_EQ(error_of([&] { net.run(s, src_->bodies()[0], src_->bodies()[1]); }),
             (base_ / "model").string() +
-                ": model is trained at 30 fps, the sequence is at 60 fps (resample the data: ptnet simulate --fps 30)");
+                ": model is trained at 30 fps, the sequence is at 60 fps (simulate the data again "
+                "with fps 30)");
   // Fine-tuning on 60 fps data from a 30 fps model.
   MemorySource fast(src_->mat(), 60, "fast60");
   for (const auto& b : src_->bodies()) fast.add_body(b);

@@ -227,7 +227,8 @@ TEST(BvhWrite, WritesAtomicallyAndRefusesToOverwrite) {
     write_bvh(b, path, false);
     FAIL() << "overwrote without force";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("--force"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()), path + ": exists; pass force to overwrite");
+    EXPECT_EQ(e.kind(), ErrorKind::exists);
   }
   EXPECT_NO_THROW(write_bvh(b, path, true));
   std::size_t files = 0;

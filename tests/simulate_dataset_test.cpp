@@ -74,7 +74,7 @@ TEST_F(SimulateDataset, SameFileWhateverThreadsAndChunks) {
 
   // Refuses to overwrite; nothing left on error.
   EXPECT_EQ(error_of([&] { simulate_dataset(clips, kBodies, (dir_ / "a.h5").string(), a); }),
-            (dir_ / "a.h5").string() + ": exists; pass --force to overwrite");
+            (dir_ / "a.h5").string() + ": exists; pass force to overwrite");
   EXPECT_EQ(error_of([&] { simulate_dataset(clips, {}, (dir_ / "c.h5").string(), a); }),
             "simulate: no bodies to simulate on");
   EXPECT_FALSE(fs::exists(dir_ / "c.h5"));

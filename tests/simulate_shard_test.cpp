@@ -98,7 +98,7 @@ TEST(SimulateShard, MergeRefusesIncompleteRepeatedOrForeignParts) {
   EXPECT_EQ(merge({"p0.h5", "p1.h5"}), "(no error)");
   EXPECT_NE(merge({"p0.h5", "p1.h5"}).find("exists"), std::string::npos);  // never overwritten without force
   EXPECT_EQ(error_of([&] { simulate_dataset(clips, kBodies, dir.file("x.h5"), options(2, 2)); }),
-            "--shard: expected K/N with 0 <= K < N, found 2/2");
+            "shard: expected K/N with 0 <= K < N, found 2/2");
 }
 
 // Shards of different runs do not merge though their options and counts

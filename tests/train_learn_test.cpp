@@ -151,7 +151,9 @@ TEST(TrainLearn, ValidationLossHalvesFromTheFirstEpoch) {
     train(src, dir.string(), o);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), dir.string() + ": exists; pass --force to overwrite or --resume to continue");
+    EXPECT_EQ(std::string(e.what()),
+              dir.string() + ": exists; pass force to overwrite or resume to continue");
+    EXPECT_EQ(e.kind(), ErrorKind::exists);
   }
   fs::remove_all(dir);
 }

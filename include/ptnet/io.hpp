@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "ptnet/error.hpp"
+
 namespace ptnet {
 
 // Largest text input (BVH, CSV, JSON) read whole into memory.
@@ -30,6 +32,10 @@ inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t(1) << 30;  // 1
 // larger than `max_bytes` or than the available memory. Non-regular files
 // (FIFOs) are read up to `max_bytes`.
 std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
+
+// The error of an input that cannot be opened, from its errno: "no such
+// file" (ErrorKind::not_found) or "cannot open: REASON" (ErrorKind::io).
+Error open_error(const std::string& path, int err);
 
 // Throws Error naming `path` unless it is a regular file (symbolic links
 // followed): "x.npy: is a FIFO, expected a regular file". For inputs whose

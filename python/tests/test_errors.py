@@ -1,4 +1,6 @@
-"""Bad input raises ValueError or OSError with the CLI's one-line message."""
+"""Bad input raises the exception its error kind names (ValueError,
+FileNotFoundError, FileExistsError, OSError) with the CLI's one-line message;
+option fields by the library's names ("force"), where the CLI says flags."""
 import glob
 import os
 import unittest
@@ -16,17 +18,40 @@ class ErrorTest(unittest.TestCase):
         self.assertEqual(str(ctx.exception), message)
         self.assertNotIn("\n", str(ctx.exception))
 
-    def test_missing_files_are_oserror(self):
+    def test_missing_files_are_filenotfounderror(self):
         d = workdir("errors")
         missing = os.path.join(d, "missing.bvh")
-        self.assertRaisesLine(OSError, cli_error("info", missing), ptnet.read_bvh, missing)
+        self.assertRaisesLine(FileNotFoundError, cli_error("info", missing), ptnet.read_bvh, missing)
         nomodel = os.path.join(d, "no_model")
         out = os.path.join(d, "t.npy")
         seq = os.path.join(d, "seq.npy")
         np.save(seq, np.zeros((30, 80, 28), np.float32))
         want = cli_error("transfer", "--model", nomodel, "--in", seq, "--source", "female,165,60", "--target",
                          "male,180,80", "--out", out)
-        self.assertRaisesLine(OSError, want, ptnet.Transfer, nomodel)
+        self.assertRaisesLine(FileNotFoundError, want, ptnet.Transfer, nomodel)
+
+    def test_an_existing_output_is_fileexistserror_naming_force(self):
+        d = workdir("errors")
+        out = os.path.join(d, "exists.pt")
+        with open(out, "wb") as f:
+            f.write(b"keep")
+        model = fixture("faithful")
+        self.assertRaisesLine(FileExistsError, f"{out}: exists; pass force to overwrite",
+                              ptnet.export_weights, model, out, force=False)
+        with open(out, "rb") as f:
+            self.assertEqual(f.read(), b"keep")
+        # The CLI says the flag.
+        self.assertEqual(cli_error("export", "--model", model, "--out", out),
+                         f"{out}: exists; pass --force to overwrite")
+        weights = os.path.join(d, "exported.pt")
+        ptnet.export_weights(model, weights, force=True)
+        folder = os.path.join(d, "exists_model")
+        os.makedirs(folder, exist_ok=True)
+        with open(os.path.join(folder, "keep.txt"), "w") as f:
+            f.write("keep")
+        self.assertRaisesLine(FileExistsError, f"{folder}: exists; pass force to overwrite",
+                              ptnet.import_weights, weights, model, folder, force=False)
+        self.assertEqual(os.listdir(folder), ["keep.txt"])
 
     def test_malformed_bvh_is_valueerror_with_the_line(self):
         files = sorted(glob.glob(os.path.join(TEST_DATA, "malformed", "*.bvh")))

@@ -49,7 +49,8 @@ void check_regular(const std::string& path) {
   if (::stat(path.c_str(), &st) != 0) return;  // absent (or a dangling link): a new file
   if (!S_ISREG(st.st_mode))
     throw Error::in(path, std::string("is ") + kind_of(st.st_mode) +
-                              ", not a regular file; refusing to replace it (even with --force)");
+                              ", not a regular file; refusing to replace it (even with " +
+                              field_text("force") + ")");
 }
 
 void check_not_input(const std::string& path) {
@@ -61,7 +62,8 @@ void check_not_input(const std::string& path) {
     struct stat now;  // the input still there (not deleted and its inode reused)
     if (::stat(in.path.c_str(), &now) != 0 || now.st_dev != in.dev || now.st_ino != in.ino) continue;
     throw Error::in(path, "is the same file as the input " + in.path +
-                                "; refusing to replace it (even with --force): write the output elsewhere");
+                              "; refusing to replace it (even with " + field_text("force") +
+                              "): write the output elsewhere");
   }
 }
 
@@ -149,17 +151,23 @@ void rename_into_place(const std::string& temp, const std::string& path) {
   check_replaceable(path);
   std::error_code ec;
   fs::rename(temp, path, ec);
-  if (ec) throw Error::in(path, "cannot rename temporary file into place: " + ec.message());
+  if (ec)
+    throw Error::in(path, "cannot rename temporary file into place: " + ec.message(),
+                    ErrorKind::io);
 }
 
 }  // namespace
 
 // ------------------------------------------------------------ reading
 
+Error open_error(const std::string& path, int err) {
+  if (err == ENOENT) return Error::in(path, "no such file", ErrorKind::not_found);
+  return Error::in(path, std::string("cannot open: ") + std::strerror(err), ErrorKind::io);
+}
+
 std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
   struct stat st;
-  if (::stat(path.c_str(), &st) != 0)
-    throw Error::in(path, errno == ENOENT ? std::string("no such file") : std::string("cannot open: ") + std::strerror(errno));
+  if (::stat(path.c_str(), &st) != 0) throw open_error(path, errno);
   if (S_ISDIR(st.st_mode)) throw Error::in(path, "is a folder, expected a file");
   const bool regular = S_ISREG(st.st_mode);
   if (regular && std::uint64_t(st.st_size) > max_bytes)
@@ -167,7 +175,7 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
                               " this kind of file may have");
   if (regular) check_memory(std::uint64_t(st.st_size), path, "reading the file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error::in(path, std::string("cannot open: ") + std::strerror(errno));
+  if (!in) throw open_error(path, errno);
   std::string text;
   if (regular) text.reserve(std::size_t(st.st_size));
   char buf[1 << 16];
@@ -177,14 +185,13 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
       throw Error::in(path, "more than the " + bytes_text(max_bytes) + " this kind of file may have (" +
                                 (regular ? "it grew while read" : "not a regular file: reading stopped") + ")");
   }
-  if (in.bad()) throw Error::in(path, "read error");
+  if (in.bad()) throw Error::in(path, "read error", ErrorKind::io);
   return text;
 }
 
 void check_regular_input(const std::string& path) {
   struct stat st;
-  if (::stat(path.c_str(), &st) != 0)
-    throw Error::in(path, errno == ENOENT ? std::string("no such file") : std::string("cannot open: ") + std::strerror(errno));
+  if (::stat(path.c_str(), &st) != 0) throw open_error(path, errno);
   if (!S_ISREG(st.st_mode)) throw Error::in(path, std::string("is ") + kind_of(st.st_mode) + ", expected a regular file");
 }
 
@@ -202,22 +209,31 @@ void note_input(const std::string& path) {
 
 // ------------------------------------------------------------ outputs
 
+namespace {
+Error exists_error(const std::string& path) {
+  return Error::in(path, "exists; pass " + field_text("force") + " to overwrite",
+                   ErrorKind::exists);
+}
+}  // namespace
+
 void check_output_path(const std::string& path, bool force) {
   check_regular(path);
   std::error_code ec;
-  if (fs::exists(path, ec) && !force) throw Error::in(path, "exists; pass --force to overwrite");
+  if (fs::exists(path, ec) && !force) throw exists_error(path);
   check_not_input(path);
   fs::path parent = fs::path(path).parent_path();
   if (parent.empty()) parent = ".";
-  if (!fs::is_directory(parent, ec)) throw Error::in(path, "folder " + parent.string() + " does not exist");
-  if (::access(parent.c_str(), W_OK) != 0) throw Error::in(path, "folder " + parent.string() + " is not writable");
+  if (!fs::is_directory(parent, ec))
+    throw Error::in(path, "folder " + parent.string() + " does not exist", ErrorKind::not_found);
+  if (::access(parent.c_str(), W_OK) != 0)
+    throw Error::in(path, "folder " + parent.string() + " is not writable", ErrorKind::io);
 }
 
 void check_output_folder(const std::string& path, bool force) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return;
   if (!fs::is_directory(path, ec)) throw Error::in(path, "exists and is not a folder");
-  if (!force && !fs::is_empty(path, ec)) throw Error::in(path, "exists; pass --force to overwrite");
+  if (!force && !fs::is_empty(path, ec)) throw exists_error(path);
 }
 
 AtomicFile::AtomicFile(std::string path, bool force) : path_(std::move(path)) {
@@ -273,10 +289,11 @@ void write_text_file(const std::string& path, const std::string& text, bool forc
   AtomicFile out(path, force);
   {
     std::ofstream f(out.temp_path(), std::ios::binary);
-    if (!f) throw Error::in(path, std::string("cannot write: ") + std::strerror(errno));
+    if (!f)
+      throw Error::in(path, std::string("cannot write: ") + std::strerror(errno), ErrorKind::io);
     f << text;
     f.flush();
-    if (!f) throw Error::in(path, "write failed (disk full?)");
+    if (!f) throw Error::in(path, "write failed (disk full?)", ErrorKind::io);
   }
   out.commit();
 }

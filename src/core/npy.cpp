@@ -50,12 +50,11 @@ std::uint64_t data_bytes(const NpyHeader& h, const std::string& path, std::uint6
 // file's size and the available memory) is read.
 NpyArray read_npy(const std::string& path) {
   struct stat st;
-  if (::stat(path.c_str(), &st) != 0)
-    throw Error::in(path, errno == ENOENT ? std::string("no such file") : std::string("cannot open: ") + std::strerror(errno));
+  if (::stat(path.c_str(), &st) != 0) throw open_error(path, errno);
   if (S_ISDIR(st.st_mode)) throw Error::in(path, "is a folder, expected a file");
   note_input(path);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error::in(path, std::string("cannot open: ") + std::strerror(errno));
+  if (!in) throw open_error(path, errno);
   std::string head(12, '\0');
   in.read(head.data(), std::streamsize(head.size()));
   head.resize(std::size_t(in.gcount()));
@@ -87,7 +86,7 @@ NpyArray read_npy(const std::string& path) {
   in.read(reinterpret_cast<char*>(a.data.data()), std::streamsize(need));  // little-endian host
   if (std::uint64_t(in.gcount()) != need) throw wrong_size(std::to_string(in.gcount()) + (regular ? " (it shrank while read)" : ""));
   if (in.peek() != std::char_traits<char>::eof()) throw wrong_size("more");
-  if (in.bad()) throw Error::in(path, "read error");
+  if (in.bad()) throw Error::in(path, "read error", ErrorKind::io);
   return a;
 }
 
@@ -162,14 +161,14 @@ void write_npy(const std::string& path, const NpyArray& a, bool force) {
   AtomicFile out(path, force);
   {
     std::ofstream f(out.temp_path(), std::ios::binary);
-    if (!f) throw Error::in(path, "cannot write");
+    if (!f) throw Error::in(path, "cannot write", ErrorKind::io);
     f.write("\x93NUMPY\x01\x00", 8);
     const char len[2] = {char(header.size() & 0xff), char(header.size() >> 8)};
     f.write(len, 2);
     f << header;
     f.write(reinterpret_cast<const char*>(a.data.data()), std::streamsize(a.data.size() * sizeof(float)));
     f.flush();
-    if (!f) throw Error::in(path, "write failed (disk full?)");
+    if (!f) throw Error::in(path, "write failed (disk full?)", ErrorKind::io);
   }
   out.commit();
 }

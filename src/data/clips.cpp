@@ -82,7 +82,9 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
     if (!r.up.empty() && r.up != "y" && r.up != "z") throw Error::at(path, number, "up y or z", escaped(get(c_up)));
     std::error_code ec;
     if (!fs::is_regular_file(r.file, ec))
-      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " not found");
+      throw Error(
+          path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " not found",
+          ErrorKind::not_found);
     rows.push_back(r);
   }
   if (rows.empty()) throw Error::in(path, "no clips listed after the header");
@@ -120,14 +122,14 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
       for (auto it = fs::recursive_directory_iterator(in, ec); !ec && it != fs::recursive_directory_iterator();
            it.increment(ec))
         if (it->is_regular_file(ec) && is_bvh(it->path())) found.push_back(it->path().lexically_normal().string());
-      if (ec) throw Error::in(in, "cannot list folder: " + ec.message());
+      if (ec) throw Error::in(in, "cannot list folder: " + ec.message(), ErrorKind::io);
       if (found.empty()) throw Error::in(in, "folder holds no .bvh files");
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else if (fs::exists(in, ec)) {
       files.push_back(in);
     } else {
-      throw Error::in(in, "no such file");
+      throw Error::in(in, "no such file", ErrorKind::not_found);
     }
   }
 

@@ -278,7 +278,7 @@ void Dataset::Impl::read_structure() {
 Dataset Dataset::open(const std::string& path) {
   h5::quiet();
   std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error::in(path, "no such file");
+  if (!fs::exists(path, ec)) throw Error::in(path, "no such file", ErrorKind::not_found);
   if (fs::is_directory(path, ec)) throw Error::in(path, "is a folder, expected an HDF5 dataset file");
   if (!fs::is_regular_file(path, ec)) throw Error::in(path, "is not a regular file, expected an HDF5 dataset file");
   note_input(path);
@@ -347,7 +347,9 @@ void Dataset::read(const std::string& name, int start, int count, float* out) co
   try {
     impl_->read_block(impl_->dataset(name), what, start, count, out);
   } catch (const H5::Exception&) {
-    throw Error::in(impl_->path, what + ": cannot read frames (damaged file?): " + h5::error_stack_text());
+    throw Error::in(impl_->path,
+                    what + ": cannot read frames (damaged file?): " + h5::error_stack_text(),
+                    ErrorKind::io);
   }
 }
 
@@ -383,7 +385,9 @@ PressureSequence Dataset::read_floor(const std::string& name) const {
   try {
     impl_->read_block(impl_->file.openDataSet(what), what, 0, m.frames, seq.kpa.data());
   } catch (const H5::Exception&) {
-    throw Error::in(impl_->path, what + ": cannot read frames (damaged file?): " + h5::error_stack_text());
+    throw Error::in(impl_->path,
+                    what + ": cannot read frames (damaged file?): " + h5::error_stack_text(),
+                    ErrorKind::io);
   }
   return seq;
 }

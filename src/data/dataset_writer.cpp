@@ -155,7 +155,7 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetInfo& info,
     write_bodies(impl->file, bodies);
     impl->sequences = h5::create_group(impl->file, "sequences");
   } catch (const H5::Exception& e) {
-    throw Error::in(path, "cannot write HDF5 file: " + h5::error_stack_text());
+    throw Error::in(path, "cannot write HDF5 file: " + h5::error_stack_text(), ErrorKind::io);
   }
   impl_ = std::move(impl);
 }
@@ -190,7 +190,7 @@ void DatasetWriter::add(const SequenceMeta& meta, const PressureSequence& seq) {
     h5::write_attr(ds, "take", meta.take);
     h5::write_attr(ds, "source", meta.source);
   } catch (const H5::Exception&) {
-    throw Error::in(path, where + ": cannot write: " + h5::error_stack_text());
+    throw Error::in(path, where + ": cannot write: " + h5::error_stack_text(), ErrorKind::io);
   }
   impl_->frames[meta.name] = seq.frames();
 }
@@ -210,7 +210,7 @@ void DatasetWriter::add_floor(const std::string& name, const PressureSequence& s
     if (impl_->floors.empty()) impl_->floor = h5::create_group(impl_->file, "floor");
     write_frames(impl_->floor, name, seq, impl_->deflater.get());
   } catch (const H5::Exception&) {
-    throw Error::in(path, where + ": cannot write: " + h5::error_stack_text());
+    throw Error::in(path, where + ": cannot write: " + h5::error_stack_text(), ErrorKind::io);
   }
   impl_->floors.insert(name);
 }
@@ -223,7 +223,8 @@ void DatasetWriter::commit() {
     impl_->floor.close();
     impl_->file.close();
   } catch (const H5::Exception&) {
-    throw Error::in(path, "cannot finish HDF5 file (disk full?): " + h5::error_stack_text());
+    throw Error::in(path, "cannot finish HDF5 file (disk full?): " + h5::error_stack_text(),
+                    ErrorKind::io);
   }
   impl_->out.commit();
   impl_->committed = true;

@@ -222,7 +222,8 @@ std::pair<int, int> shard_jobs(int jobs, const std::vector<ClipSource>& clips, c
                                const std::string& out_path, std::string& config_json) {
   const int k = o.shard_index, n = o.shard_count;
   if (n < 1 || k < 0 || k >= n)
-    throw Error("--shard: expected K/N with 0 <= K < N, found " + std::to_string(k) + "/" + std::to_string(n));
+    throw Error(field_text("shard") + ": expected K/N with 0 <= K < N, found " + std::to_string(k) +
+                "/" + std::to_string(n));
   if (n == 1) return {0, jobs};
   if (n > jobs)
     throw Error::in(out_path, std::to_string(n) + " shards of " + std::to_string(jobs) +
@@ -271,10 +272,10 @@ SimulateDatasetSummary simulate_dataset(const std::vector<ClipSource>& clips, co
     return run(clips, bodies, out_path, options);
   } catch (const Error& e) {
     // Errors are one line (HDF5's error stacks may hold line breaks).
-    std::string text = e.what();
+    std::string text = e.message();
     for (char& ch : text)
       if (ch == '\n' || ch == '\r') ch = ' ';
-    throw Error(text);
+    throw Error(text, e.kind());
   }
 }
 

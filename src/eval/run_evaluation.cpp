@@ -9,7 +9,8 @@
 namespace ptnet {
 
 EvaluationResult run_evaluation(const EvaluationRun& run) {
-  if (!(run.threshold_kpa >= 0)) throw Error("--threshold: expected a non-negative kPa value");
+  if (!(run.threshold_kpa >= 0))
+    throw Error(field_text("threshold_kpa") + ": expected a non-negative kPa value");
   const Dataset dataset = Dataset::open(run.data_path);
   TransferOptions to;
   to.stride = run.stride;

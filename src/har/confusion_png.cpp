@@ -67,7 +67,7 @@ class Canvas {
   void save(const std::string& path, bool force) const {
     AtomicFile out(path, force);
     FILE* f = std::fopen(out.temp_path().c_str(), "wb");
-    if (!f) throw Error::in(path, "cannot write");
+    if (!f) throw Error::in(path, "cannot write", ErrorKind::io);
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(png_jmpbuf(png))) {

@@ -254,8 +254,9 @@ std::vector<int> pseudo_labels(const Dataset& real, const RealWindows& w, const 
     << int(std::round(100 * pca.explained)) << " % of variance), " << ms.seeds << " seeds";
   say(o, s.str());
   if (r.clusters < 2)
-    throw Error::in(real.path(), "mean shift found a single cluster (bandwidth " + std::to_string(r.bandwidth) +
-                                     "); pass a smaller --bandwidth");
+    throw Error::in(real.path(), "mean shift found a single cluster (bandwidth " +
+                                     std::to_string(r.bandwidth) + "); pass a smaller " +
+                                     field_text("bandwidth"));
   return ms.labels;
 }
 

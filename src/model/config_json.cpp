@@ -94,7 +94,7 @@ ModelConfig model_config_from_json(const json& j, const std::string& where) {
   try {
     validate(c);
   } catch (const Error& e) {
-    throw Error::in(where, e.what());
+    throw Error::in(where, e.message(), e.kind());
   }
   return c;
 }
@@ -124,10 +124,12 @@ json to_json(const ModelDir& d) {
 ModelDir read_model_dir(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(dir, ec)) throw Error::in(dir, "no such model folder");
+  if (!fs::exists(dir, ec)) throw Error::in(dir, "no such model folder", ErrorKind::not_found);
   if (!fs::is_directory(dir, ec)) throw Error::in(dir, "is not a folder (expected a model folder with config.json)");
   const std::string path = (fs::path(dir) / "config.json").string();
-  if (!fs::exists(path, ec)) throw Error::in(path, "no such file (is " + dir + " a ptnet model folder?)");
+  if (!fs::exists(path, ec))
+    throw Error::in(path, "no such file (is " + dir + " a ptnet model folder?)",
+                    ErrorKind::not_found);
   return parse_model_config(read_text_file(path, kMaxConfigBytes), path, dir);
 }
 

@@ -277,7 +277,8 @@ void save_weights(const PressureTransferNet& net, const std::string& path) {
 
 void load_weights(PressureTransferNet& net, const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error::in(path, "no such file (model weights)");
+  if (!std::filesystem::exists(path, ec))
+    throw Error::in(path, "no such file (model weights)", ErrorKind::not_found);
   verify_zip_file(path);
   torch::serialize::InputArchive archive;
   try {
@@ -292,10 +293,12 @@ torch::Device parse_device(const std::string& text) {
   if (text == "cpu") return torch::kCPU;
   if (text == "cuda") {
     if (!torch::cuda::is_available())
-      throw Error("--device cuda: this LibTorch build or machine has no CUDA device; use --device cpu");
+      throw Error(field_text("device") +
+                  " cuda: this LibTorch build or machine has no CUDA device; use " +
+                  field_text("device") + " cpu");
     return torch::kCUDA;
   }
-  throw Error("--device: expected cpu or cuda, found \"" + text + "\"");
+  throw Error(field_text("device") + ": expected cpu or cuda, found \"" + text + "\"");
 }
 
 }  // namespace ptnet

@@ -15,13 +15,14 @@ Arch parse_arch(const std::string& text) {
   if (text == "skip") return Arch::skip;
   if (text == "residual") return Arch::residual;
   if (text == "frame") return Arch::frame;
-  throw Error("--arch: expected faithful, skip, residual or frame, found \"" + text + "\"");
+  throw Error(field_text("arch") + ": expected faithful, skip, residual or frame, found \"" + text +
+              "\"");
 }
 
 Align parse_align(const std::string& text) {
   if (text == "none") return Align::none;
   if (text == "zoom") return Align::zoom;
-  throw Error("--align: expected none or zoom, found \"" + text + "\"");
+  throw Error(field_text("align") + ": expected none or zoom, found \"" + text + "\"");
 }
 
 const char* align_name(Align align) { return align == Align::zoom ? "zoom" : "none"; }

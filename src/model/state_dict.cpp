@@ -65,11 +65,12 @@ std::vector<char> save_plain_dict(const c10::Dict<std::string, torch::Tensor>& d
 // The tensors of a torch.save'd dict, by name; throws Error naming `path`.
 c10::Dict<c10::IValue, c10::IValue> read_dict(const std::string& path) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw Error::in(path, "no such file (a state dict saved by torch.save)");
+  if (!fs::is_regular_file(path, ec))
+    throw Error::in(path, "no such file (a state dict saved by torch.save)", ErrorKind::not_found);
   verify_zip_file(path);
   std::ifstream in(path, std::ios::binary);
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw Error::in(path, "cannot read");
+  if (!in.good() && !in.eof()) throw Error::in(path, "cannot read", ErrorKind::io);
   // LibTorch 1.13's unpickler reads a plain dict, not the OrderedDict (with
   // its _metadata) that state_dict() returns.
   const std::string how = "save a plain dict: ptnet_torch.save_state_dict(net, FILE) or "
@@ -153,7 +154,7 @@ void import_state_dict(const std::string& weights_path, const std::string& confi
   }
   std::error_code ec;
   fs::create_directories(out_dir, ec);
-  if (ec) throw Error::in(out_dir, "cannot create folder: " + ec.message());
+  if (ec) throw Error::in(out_dir, "cannot create folder: " + ec.message(), ErrorKind::io);
   for (const char* stale : {"checkpoint.pt", "history.csv"}) fs::remove(fs::path(out_dir) / stale, ec);
   dir.path = out_dir;
   dir.integrity = nlohmann::json::object();

@@ -77,8 +77,9 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
                                 " mat, the sequence has " + std::to_string(src.mat.rows) + " x " +
                                 std::to_string(src.mat.cols));
   if (std::abs(src.fps - d.fps) > 1e-6 * d.fps)
-    throw Error::in(d.path, "model is trained at " + number_text(d.fps) + " fps, the sequence is at " +
-                                number_text(src.fps) + " fps (resample the data: ptnet simulate --fps " +
+    throw Error::in(d.path, "model is trained at " + number_text(d.fps) +
+                                " fps, the sequence is at " + number_text(src.fps) +
+                                " fps (simulate the data again with " + field_text("fps") + " " +
                                 number_text(d.fps) + ")");
   const int t = src.frames();
   if (t < k)

@@ -101,10 +101,11 @@ const char* units_name(Units units) {
 double metres_per_unit(const Bvh& bvh, Units units, UpAxis up) {
   if (units != Units::automatic) return unit_metres(units);
   if (bvh.frames() < 1 || bvh.joints.empty())
-    throw Error::in(bvh.source, "cannot detect units without a frame; pass --units");
+    throw Error::in(bvh.source, "cannot detect units without a frame; pass " + field_text("units"));
   const double extent = first_frame_extent(bvh);
   if (!(extent > 0) || !std::isfinite(extent))
-    throw Error::in(bvh.source, "cannot detect units: the first frame has no extent; pass --units");
+    throw Error::in(bvh.source, "cannot detect units: the first frame has no extent; pass " +
+                                    field_text("units"));
   // The candidate giving a human height (1.0-2.3 m) closest to 1.7 m; if
   // none does, the one closest to 1.7 m by ratio.
   const Units candidates[] = {Units::m, Units::cm, Units::mm, Units::in, Units::cmu};

@@ -33,7 +33,8 @@ struct Address {
 
 Address parse_rendezvous(const std::string& text) {
   Address a;
-  const std::string bad = "--rendezvous: expected tcp://HOST:PORT or file://PATH, found " + escaped(text, 80);
+  const std::string bad = field_text("rendezvous") +
+                          ": expected tcp://HOST:PORT or file://PATH, found " + escaped(text, 80);
   if (text.rfind("file://", 0) == 0) {
     a.path = text.substr(7);
     if (a.path.empty()) throw Error(bad);
@@ -77,12 +78,17 @@ Communicator::Communicator(int rank, int size, std::unique_ptr<Impl> impl)
 Communicator::~Communicator() = default;
 
 std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
-  if (o.world_size < 1) throw Error("--world-size: must be >= 1, found " + std::to_string(o.world_size));
+  if (o.world_size < 1)
+    throw Error(field_text("world_size") + ": must be >= 1, found " + std::to_string(o.world_size));
   if (o.rank < 0 || o.rank >= o.world_size)
-    throw Error("--rank: must be in 0-" + std::to_string(o.world_size - 1) + ", found " + std::to_string(o.rank));
+    throw Error(field_text("rank") + ": must be in 0-" + std::to_string(o.world_size - 1) +
+                ", found " + std::to_string(o.rank));
   if (o.world_size == 1) return std::unique_ptr<Communicator>(new Communicator(0, 1, nullptr));
-  if (o.rendezvous.empty()) throw Error("--rendezvous: needed with --world-size " + std::to_string(o.world_size));
-  if (!(o.timeout_s > 0)) throw Error("--dist-timeout: must be > 0, found " + number_text(o.timeout_s));
+  if (o.rendezvous.empty())
+    throw Error(field_text("rendezvous") + ": needed with " + field_text("world_size") + " " +
+                std::to_string(o.world_size));
+  if (!(o.timeout_s > 0))
+    throw Error(field_text("dist_timeout_s") + ": must be > 0, found " + number_text(o.timeout_s));
   const Address a = parse_rendezvous(o.rendezvous);
   // c10d logs its connection retries and timeouts through glog on stderr;
   // every failure here becomes one Error line instead.
@@ -96,10 +102,12 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
     impl->store = a.tcp ? tcp_store(a.host, a.port, o.rank == 0, o.world_size, impl->timeout)
                         : file_store(a.path, o.rank, o.world_size, impl->timeout);
   } catch (const Error& e) {
-    throw Error("--rendezvous " + o.rendezvous + ": " + me + " " + e.what());
+    throw Error(field_text("rendezvous") + " " + o.rendezvous + ": " + me + " " + e.message(),
+                e.kind());
   } catch (const std::exception& e) {
-    throw Error("--rendezvous " + o.rendezvous + ": " + me + " could not " +
-                (o.rank == 0 && a.tcp ? "listen" : "reach rank 0") + " within " + secs + " (" + short_detail(e) + ")");
+    throw Error(field_text("rendezvous") + " " + o.rendezvous + ": " + me + " could not " +
+                (o.rank == 0 && a.tcp ? "listen" : "reach rank 0") + " within " + secs + " (" +
+                short_detail(e) + ")");
   }
   // Joining: rank 0 publishes the world size; each rank checks it and
   // claims its rank; all wait until every rank has joined, or one refused.
@@ -112,10 +120,12 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
     if (o.rank == 0) store.set("ptnet/world_size", bytes_of(std::to_string(o.world_size)));
     const std::string theirs = text_of(store.get("ptnet/world_size"));  // waits up to the timeout
     if (theirs != std::to_string(o.world_size))
-      refuse("--world-size: " + me + " was started with " + std::to_string(o.world_size) + ", rank 0 with " + theirs);
+      refuse(field_text("world_size") + ": " + me + " was started with " +
+             std::to_string(o.world_size) + ", rank 0 with " + theirs);
     if (store.add("ptnet/rank/" + std::to_string(o.rank), 1) > 1)
-      refuse("--rank: " + me + " was started twice" +
-             (a.tcp ? std::string() : " (or " + a.path + " is left from an earlier run: remove it)"));
+      refuse(
+          field_text("rank") + ": " + me + " was started twice" +
+          (a.tcp ? std::string() : " (or " + a.path + " is left from an earlier run: remove it)"));
     store.set("ptnet/joined/" + std::to_string(o.rank), bytes_of("1"));
     const auto deadline = Clock::now() + impl->timeout;
     for (int r = 0; r < o.world_size;) {
@@ -126,15 +136,16 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
         continue;
       }
       if (Clock::now() > deadline)
-        throw Error("--rendezvous " + o.rendezvous + ": rank " + std::to_string(r) + " did not join within " + secs +
-                    " (" + std::to_string(o.world_size) + " ranks expected)");
+        throw Error(field_text("rendezvous") + " " + o.rendezvous + ": rank " + std::to_string(r) +
+                    " did not join within " + secs + " (" + std::to_string(o.world_size) +
+                    " ranks expected)");
       std::this_thread::sleep_for(kPoll);
     }
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error("--rendezvous " + o.rendezvous + ": " + me + " could not join within " + secs + " (" +
-                short_detail(e) + ")");
+    throw Error(field_text("rendezvous") + " " + o.rendezvous + ": " + me +
+                " could not join within " + secs + " (" + short_detail(e) + ")");
   }
   try {
     auto options = c10d::ProcessGroupGloo::Options::create(impl->timeout);

@@ -12,20 +12,26 @@ namespace fs = std::filesystem;
 void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
   std::error_code ec;
   if (o.resume) {
-    if (!fs::is_directory(dir, ec)) throw Error::in(dir, "no model folder to resume");
+    if (!fs::is_directory(dir, ec))
+      throw Error::in(dir, "no model folder to resume", ErrorKind::not_found);
     return;
   }
   if (fs::exists(dir, ec)) {
     if (!fs::is_directory(dir, ec)) throw Error::in(dir, "exists and is not a folder");
     const bool empty = fs::is_empty(dir, ec);
-    if (!empty && !o.force) throw Error::in(dir, "exists; pass --force to overwrite or --resume to continue");
+    if (!empty && !o.force)
+      throw Error::in(dir,
+                      "exists; pass " + field_text("force") + " to overwrite or " +
+                          field_text("resume") + " to continue",
+                      ErrorKind::exists);
     for (const char* f : {"config.json", "model.pt", "checkpoint.pt", "history.csv"})
       fs::remove(fs::path(dir) / f, ec);
   } else {
     fs::path parent = fs::path(dir).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec))
-      throw Error::in(dir, "folder " + parent.string() + " does not exist");
-    if (!fs::create_directory(dir, ec)) throw Error::in(dir, "cannot create folder: " + ec.message());
+      throw Error::in(dir, "folder " + parent.string() + " does not exist", ErrorKind::not_found);
+    if (!fs::create_directory(dir, ec))
+      throw Error::in(dir, "cannot create folder: " + ec.message(), ErrorKind::io);
   }
 }
 

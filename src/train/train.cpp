@@ -127,7 +127,7 @@ void plan_model(Run& run) {
   // A contact head trains with a weight: the given one, else the one it was trained with.
   if (md.model.contact && o.contact_weight <= 0) o.contact_weight = previous.options.value("contact_weight", 0.0);
   if (md.model.contact && !(o.contact_weight > 0))
-    throw Error("--contact-weight: a model with a contact head needs a weight > 0");
+    throw Error(field_text("contact_weight") + ": a model with a contact head needs a weight > 0");
   if (!md.model.contact) o.contact_weight = 0;
   if ((o.resume || !o.init.empty()) && std::abs(previous.fps - source.fps()) > 1e-6 * previous.fps)
     throw Error::in(source.path(), "is at " + number_text(source.fps()) + " fps, the model at " +
@@ -211,7 +211,8 @@ void log_setup(const Run& run, const WindowIndex& index, const PressureTransferN
   const int micro_batches = (run.o.batch + run.o.micro_batch - 1) / run.o.micro_batch;
   if (run.comm.size() > micro_batches)
     run.log("train: warning: " + std::to_string(micro_batches) + " micro-batch(es) per step for " +
-            std::to_string(run.comm.size()) + " ranks: some ranks idle (set --micro-batch to at most --batch / ranks)");
+            std::to_string(run.comm.size()) +
+            " ranks: some ranks idle (set micro_batch to at most batch / ranks)");
 }
 
 // One epoch of optimiser steps (epoch0 0-based); the mean training loss.
@@ -254,10 +255,11 @@ double train_epoch(const Run& run, PressureTransferNet& net, torch::optim::Adam&
                   (double(part.size()) / double(refs.size()));
       const double part_loss = loss.item<double>();
       if (!std::isfinite(part_loss))
-        throw Error("training diverged: loss is " + std::string(std::isnan(part_loss) ? "NaN" : "infinite") +
-                    " at epoch " + std::to_string(epoch0 + 1) + ", batch " + std::to_string(i / o.batch + 1) +
-                    " (try a lower --lr); the last good checkpoint (epoch " + std::to_string(s.epoch) +
-                    ") is kept in " + run.ckpt_path);
+        throw Error("training diverged: loss is " +
+                    std::string(std::isnan(part_loss) ? "NaN" : "infinite") + " at epoch " +
+                    std::to_string(epoch0 + 1) + ", batch " + std::to_string(i / o.batch + 1) +
+                    " (try a lower " + field_text("lr") + "); the last good checkpoint (epoch " +
+                    std::to_string(s.epoch) + ") is kept in " + run.ckpt_path);
       loss.backward();
       l += part_loss;
       if (comm.distributed()) shared_bn.after_micro_batch(k, micro_batches);

@@ -50,7 +50,7 @@ TrainOptions TrainOptions::from_preset(const std::string& name) {
     }
     return o;
   }
-  throw Error("--preset: expected paper, fast or full, found \"" + name + "\"");
+  throw Error(field_text("preset") + ": expected paper, fast or full, found \"" + name + "\"");
 }
 
 void TrainOptions::set_arch(Arch arch) {
@@ -101,24 +101,25 @@ void check_options(const TrainOptions& o) {
   auto at_least = [](const char* what, double v, double min) {
     if (!(v >= min)) {
       std::ostringstream s;
-      s << "--" << what << ": must be >= " << min << ", found " << v;
+      s << field_text(what) << ": must be >= " << min << ", found " << v;
       throw Error(s.str());
     }
   };
   at_least("epochs", o.epochs, 1);
   at_least("batch", o.batch, 1);
-  at_least("micro-batch", o.micro_batch, 1);
+  at_least("micro_batch", o.micro_batch, 1);
   at_least("patience", o.patience, 1);
   at_least("stride", o.stride, 1);
   at_least("threads", o.threads, 0);
   if (o.threads > max_threads())
-    throw Error("--threads: must be <= " + std::to_string(max_threads()) + ", found " + std::to_string(o.threads));
-  at_least("lr-halve-every", o.lr_halve_every, 1);
-  at_least("samples-per-epoch", double(o.samples_per_epoch), 0);
-  at_least("val-samples", double(o.val_samples), 0);
-  at_least("crop-rows", o.crop_rows, 0);
-  at_least("contact-weight", o.contact_weight, 0);
-  if (!(o.lr > 0 && std::isfinite(o.lr))) throw Error("--lr: must be > 0");
+    throw Error(field_text("threads") + ": must be <= " + std::to_string(max_threads()) +
+                ", found " + std::to_string(o.threads));
+  at_least("lr_halve_every", o.lr_halve_every, 1);
+  at_least("samples_per_epoch", double(o.samples_per_epoch), 0);
+  at_least("val_samples", double(o.val_samples), 0);
+  at_least("crop_rows", o.crop_rows, 0);
+  at_least("contact_weight", o.contact_weight, 0);
+  if (!(o.lr > 0 && std::isfinite(o.lr))) throw Error(field_text("lr") + ": must be > 0");
 }
 
 double lr_at(const TrainOptions& o, int epoch0) {  // epoch0: 0-based

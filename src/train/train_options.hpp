@@ -14,7 +14,7 @@
 
 namespace ptnet {
 
-// Throws Error for values train() cannot run with ("--epochs: must be >= 1, found 0").
+// Throws Error for values train() cannot run with ("epochs: must be >= 1, found 0").
 void check_options(const TrainOptions& o);
 // The learning rate of epoch `epoch0` (0-based): lr halved every lr_halve_every epochs.
 double lr_at(const TrainOptions& o, int epoch0);

@@ -319,7 +319,9 @@ std::vector<Image> render_animation(const std::vector<FigurePanel>& panels, cons
 
 void render_figure(const Dataset& d, const std::vector<std::string>& names, const std::string& out,
                    const FigureOptions& opt, bool force) {
-  if (names.empty()) throw Error("render: give at least one --sequence");
+  if (names.empty())
+    throw Error("render: " + field_text("sequences") +
+                ": expected at least one sequence name, found none");
   const std::string ext = lower(std::filesystem::path(out).extension().string());
   if (ext != ".png" && ext != ".gif")
     throw Error::in(out, "unknown figure type '" + ext + "', expected .png or .gif");

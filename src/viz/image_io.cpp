@@ -23,7 +23,8 @@ void write_png(const std::string& path, const Image& image, bool force) {
   if (image.width <= 0 || image.height <= 0) throw Error::in(path, "empty image");
   AtomicFile out(path, force);
   FILE* fp = std::fopen(out.temp_path().c_str(), "wb");
-  if (!fp) throw Error::in(path, std::string("cannot write: ") + std::strerror(errno));
+  if (!fp)
+    throw Error::in(path, std::string("cannot write: ") + std::strerror(errno), ErrorKind::io);
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
@@ -132,10 +133,12 @@ void write_gif(const std::string& path, const std::vector<Image>& frames,
   AtomicFile out(path, force);
   int err = 0;
   const int fd = ::open(out.temp_path().c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);  // umask applies
-  if (fd < 0) throw Error::in(path, std::string("cannot write: ") + std::strerror(errno));
+  if (fd < 0)
+    throw Error::in(path, std::string("cannot write: ") + std::strerror(errno), ErrorKind::io);
   GifCloser g{EGifOpenFileHandle(fd, &err)};
   if (!g.gif) ::close(fd);
-  if (!g.gif) throw Error::in(path, std::string("cannot write GIF: ") + GifErrorString(err));
+  if (!g.gif)
+    throw Error::in(path, std::string("cannot write GIF: ") + GifErrorString(err), ErrorKind::io);
   auto fail = [&](const char* what) {
     throw Error::in(path, std::string("GIF ") + what + " failed: " + GifErrorString(g.gif->Error));
   };
