@@ -173,6 +173,11 @@ struct ClassificationReport {
   double accuracy = 0;
 };
 
+// Mean of `v` (0 when empty) and its sample standard deviation (n - 1; 0
+// for fewer than 2 values): the spread over seeded runs.
+double mean_of(const std::vector<double>& v);
+double sd_of(const std::vector<double>& v);
+
 // The column of each row's largest score (the first on a tie): scores
 // [N x C] row-major -> [N].
 std::vector<int> argmax_rows(const std::vector<float>& scores, int columns);

@@ -37,6 +37,14 @@ const std::vector<std::string>& known_syntheses() {
   return k;
 }
 
+// model and model-mean: the sources made by the transfer model.
+bool is_transfer_source(const std::string& name) { return name == "model" || name == "model-mean"; }
+
+// The sources a transfer source is compared with: the analytic syntheses.
+bool is_baseline(const std::string& name) {
+  return name != "recorded" && name != "oracle" && !is_transfer_source(name);
+}
+
 void check_options(const BenchOptions& o, const TransferFn& transfer) {
   if (o.runs < 1) throw Error("har-bench: runs must be at least 1, found " + std::to_string(o.runs));
   if (o.ensemble < 1)
@@ -55,7 +63,7 @@ void check_options(const BenchOptions& o, const TransferFn& transfer) {
       throw Error("har-bench: unknown training source '" + s + "' (sources: " + join(known_syntheses()) + ")");
     if (std::count(seen.begin(), seen.end(), s)) throw Error("har-bench: training source '" + s + "' given twice");
     seen.push_back(s);
-    if ((s == "model" || s == "model-mean") && !transfer)
+    if (is_transfer_source(s) && !transfer)
       throw Error("har-bench: source '" + s + "' needs a transfer model");
   }
 }
@@ -151,20 +159,6 @@ int fit_pseudo_labels(std::vector<Windows*> sets, const BenchOptions& o, std::st
   summary = std::to_string(ms.clusters()) + " clusters, bandwidth " + fixed_text(ms.bandwidth) + ", silhouette " +
             fixed_text(ms.silhouette);
   return ms.clusters();
-}
-
-double mean_of(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / double(v.size());
-}
-
-double sd_of(const std::vector<double>& v) {
-  if (v.size() < 2) return 0.0;
-  const double m = mean_of(v);
-  double s = 0;
-  for (double x : v) s += (x - m) * (x - m);
-  return std::sqrt(s / double(v.size() - 1));
 }
 
 // One training source: the deployment bodies' training windows it adds to
@@ -296,8 +290,7 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
   }
   for (const BenchSource& a : t.sources)
     for (const BenchSource& b : t.sources)
-      if (a.name.rfind("model", 0) == 0 && b.name != "recorded" && b.name != "oracle" &&
-          b.name.rfind("model", 0) != 0)
+      if (is_transfer_source(a.name) && is_baseline(b.name))
         t.comparisons.push_back(compare_runs(a, b));
   const double floor = t.sources.front().mean, ceiling = t.sources.back().mean;
   t.gap = ceiling - floor;
@@ -389,8 +382,7 @@ std::vector<Synthesis> synthesise_sources(const BenchClips& clips, const Populat
   std::vector<Synthesis> sources;
   sources.push_back({"recorded", {}});
   for (const std::string& name : o.syntheses) sources.push_back({name, {}});
-  const bool transfers = std::any_of(o.syntheses.begin(), o.syntheses.end(),
-                                     [](const std::string& s) { return s == "model" || s == "model-mean"; });
+  const bool transfers = std::any_of(o.syntheses.begin(), o.syntheses.end(), is_transfer_source);
   for (std::size_t c = 0; c < clips.clips.size(); ++c) {
     const BenchClip& clip = clips.clips[c];
     for (int d = 0; d < D; ++d) {

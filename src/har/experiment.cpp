@@ -49,21 +49,6 @@ void add_windows(const PressureSequence& seq, int sequence_index, const std::str
   }
 }
 
-double mean_of(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / double(v.size());
-}
-
-// Sample standard deviation (n - 1); 0 for one value.
-double sd_of(const std::vector<double>& v) {
-  if (v.size() < 2) return 0.0;
-  const double m = mean_of(v);
-  double s = 0;
-  for (double x : v) s += (x - m) * (x - m);
-  return std::sqrt(s / double(v.size() - 1));
-}
-
 // Body id of every window, train windows first: [N].
 std::vector<std::string> window_subjects(const Dataset& real, const WindowSet& train,
                                          const WindowSet& test) {

@@ -2,11 +2,27 @@
 // precision / recall / F1, macro F1 as scikit-learn computes it with
 // labels=None and zero_division=0, accuracy.
 #include <algorithm>
+#include <cmath>
 
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 
 namespace ptnet::har {
+
+double mean_of(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / double(v.size());
+}
+
+// Sample standard deviation (n - 1).
+double sd_of(const std::vector<double>& v) {
+  if (v.size() < 2) return 0.0;
+  const double m = mean_of(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / double(v.size() - 1));
+}
 
 std::vector<int> argmax_rows(const std::vector<float>& scores, int columns) {
   if (columns < 1 || scores.size() % std::size_t(columns) != 0)
