@@ -235,6 +235,8 @@ TEST(HarBench, ProceduralBenchmarkScoresEverySourceOnTheDeploymentBodies) {
     }
     EXPECT_EQ(s.confusion.sum(), 2 * r.test_windows) << "every test window scored in every run";
     ASSERT_EQ(s.body_f1.size(), 2u);
+    // One body per band: a band's windows are its body's.
+    EXPECT_EQ(s.band_f1, s.body_f1) << s.name;
   }
   EXPECT_TRUE(std::isnan(t.sources.front().gap_closed));
   EXPECT_NEAR(t.gap, t.sources.back().mean - t.sources.front().mean, 1e-12);
@@ -293,13 +295,18 @@ TEST(HarBench, RunsOfEverySourceTrainFromTheSameSeeds) {
   ASSERT_EQ(t.sources.size(), 4u);
   ASSERT_EQ(t.sources[1].macro_f1.size(), 2u);
   EXPECT_EQ(t.sources[1].macro_f1, t.sources[2].macro_f1) << "the same windows and seeds, the same scores";
-  ASSERT_EQ(t.comparisons.size(), 1u);
-  const BenchComparison& c = t.comparisons[0];
-  EXPECT_EQ(c.source, "model-mean");
-  EXPECT_EQ(c.baseline, "copy");
-  EXPECT_EQ(c.difference, 0.0);
-  EXPECT_EQ(c.paired_sd, 0.0);
-  EXPECT_EQ(c.wins, 0);
+  // The whole population, then each of its two bands (xsmall, xlarge).
+  ASSERT_EQ(t.comparisons.size(), 3u);
+  EXPECT_EQ(t.bands, o.deployment_bands);
+  for (std::size_t i = 0; i < t.comparisons.size(); ++i) {
+    const BenchComparison& c = t.comparisons[i];
+    EXPECT_EQ(c.band, i == 0 ? "" : o.deployment_bands[i - 1]);
+    EXPECT_EQ(c.source, "model-mean");
+    EXPECT_EQ(c.baseline, "copy");
+    EXPECT_EQ(c.difference, 0.0);
+    EXPECT_EQ(c.paired_sd, 0.0);
+    EXPECT_EQ(c.wins, 0);
+  }
 }
 
 TEST(HarBench, ComparisonsAreRunByRun) {
@@ -308,14 +315,16 @@ TEST(HarBench, ComparisonsAreRunByRun) {
   b.name = "copy";
   a.macro_f1 = {0.60, 0.50, 0.70};
   b.macro_f1 = {0.55, 0.46, 0.66};  // lower in every run by 0.04-0.05: a common seed effect
-  a.sd = 0.1;
-  b.sd = 0.1;
   const BenchComparison c = compare_runs(a, b);
   EXPECT_NEAR(c.difference, 0.13 / 3, 1e-12);
   const double m = 0.13 / 3;
   const double var = ((0.05 - m) * (0.05 - m) + 2 * (0.04 - m) * (0.04 - m)) / 2;
   EXPECT_NEAR(c.paired_sd, std::sqrt(var), 1e-12);
-  EXPECT_EQ(c.run_sd, 0.1);
+  // The larger of the two sources' sample sd over runs: b's (mean 1.67 / 3).
+  const double mb = 1.67 / 3;
+  const double var_b = ((0.55 - mb) * (0.55 - mb) + (0.46 - mb) * (0.46 - mb) + (0.66 - mb) * (0.66 - mb)) / 2;
+  EXPECT_NEAR(c.run_sd, std::sqrt(var_b), 1e-12);
+  EXPECT_GT(var_b, 0.01) << "b's sd exceeds a's (0.1)";
   EXPECT_EQ(c.wins, 3);
   b.macro_f1.pop_back();
   EXPECT_NE(error_of([&] { compare_runs(a, b); }).find("cannot compare 3 runs of model with 2 of copy"),

@@ -157,6 +157,7 @@ struct BenchSource {
   double gap_closed = 0;              // (mean - recorded) / (oracle - recorded); NaN for recorded/oracle
   std::vector<double> class_f1;       // [C] mean over runs
   std::vector<std::vector<double>> body_f1;  // [deployment body][runs] macro F1 on that body's windows
+  std::vector<std::vector<double>> band_f1;  // [deployment band][runs] macro F1 on that band's windows
   Eigen::MatrixXi confusion;          // [C, C] summed over runs
 };
 
@@ -165,6 +166,7 @@ struct BenchSource {
 // source trains from the same seeds, so runs pair up.
 struct BenchComparison {
   std::string source, baseline;
+  std::string band;                   // a deployment band's windows only; empty: every deployment body's
   double difference = 0;              // mean over runs of source - baseline macro F1
   double paired_sd = 0;               // sample sd over runs of that difference
   double run_sd = 0;                  // the larger of the two sources' sd over runs
@@ -177,7 +179,10 @@ struct BenchTable {
   std::vector<int> test_support;      // [C] test windows per class
   std::vector<BenchSource> sources;   // recorded, syntheses..., oracle
   double gap = 0;                     // oracle - recorded mean macro F1
-  std::vector<BenchComparison> comparisons;  // every transfer source x every baseline present
+  std::vector<std::string> bands;     // deployment bands scored apart (when there are 2+)
+  // Every transfer source x every baseline present: on every deployment
+  // body's test windows, then on each band's.
+  std::vector<BenchComparison> comparisons;
 };
 
 struct BenchResult {
@@ -201,9 +206,11 @@ struct BenchResult {
 // not a training set of these clips.
 BenchResult run_bench(const BenchOptions& options, const TransferFn& transfer);
 
-// A source's runs against a baseline's, run by run (their macro_f1 and sd
-// must be filled; throws Error for unequal or no runs).
+// A source's runs against a baseline's, run by run (throws Error for
+// unequal or no runs): their macro_f1, or two series of per-run macro F1.
 BenchComparison compare_runs(const BenchSource& source, const BenchSource& baseline);
+BenchComparison compare_runs(const std::string& source, const std::vector<double>& source_f1,
+                             const std::string& baseline, const std::vector<double>& baseline_f1);
 
 std::string format_bench(const BenchResult& result);  // the tables as text
 std::string bench_json(const BenchResult& result);    // results.json (pretty)

@@ -172,26 +172,37 @@ struct Synthesis {
 struct RunScore {
   ClassificationReport report;
   std::vector<double> body_f1;  // [D]
+  std::vector<double> band_f1;  // [deployment bands]
 };
 
+// Macro F1 over the test windows whose deployment body passes `keep`.
+template <class Keep>
+double macro_f1_where(const Windows& test, const std::vector<int>& truth, const std::vector<int>& predicted,
+                      int classes, Keep keep) {
+  std::vector<int> t, p;
+  for (int i = 0; i < test.count(); ++i)
+    if (keep(test.body[std::size_t(i)])) {
+      t.push_back(truth[std::size_t(i)]);
+      p.push_back(predicted[std::size_t(i)]);
+    }
+  return t.empty() ? 0.0 : classification_report(t, p, classes).macro_f1;
+}
+
 // A run's ensemble: its members' probabilities [N x C] averaged, scored on
-// the test windows overall and per deployment body.
+// the test windows overall, per deployment body and per deployment band
+// (body d is of band d / bodies_per_band).
 RunScore score_run(const std::vector<const std::vector<float>*>& members, const Windows& test,
-                   const std::vector<int>& truth, int classes, int deployment_bodies) {
+                   const std::vector<int>& truth, int classes, int deployment_bodies, const BenchOptions& o) {
   std::vector<float> mean(members.front()->size(), 0.0f);
   for (const std::vector<float>* m : members)
     for (std::size_t i = 0; i < mean.size(); ++i) mean[i] += (*m)[i] / float(members.size());
   const std::vector<int> predicted = argmax_rows(mean, classes);
-  RunScore r{classification_report(truth, predicted, classes), {}};
-  for (int d = 0; d < deployment_bodies; ++d) {
-    std::vector<int> t, p;
-    for (int i = 0; i < test.count(); ++i)
-      if (test.body[std::size_t(i)] == d) {
-        t.push_back(truth[std::size_t(i)]);
-        p.push_back(predicted[std::size_t(i)]);
-      }
-    r.body_f1.push_back(t.empty() ? 0.0 : classification_report(t, p, classes).macro_f1);
-  }
+  RunScore r{classification_report(truth, predicted, classes), {}, {}};
+  for (int d = 0; d < deployment_bodies; ++d)
+    r.body_f1.push_back(macro_f1_where(test, truth, predicted, classes, [d](int body) { return body == d; }));
+  for (int b = 0; b < int(o.deployment_bands.size()); ++b)
+    r.band_f1.push_back(macro_f1_where(test, truth, predicted, classes,
+                                       [&](int body) { return body / o.bodies_per_band == b; }));
   return r;
 }
 
@@ -267,7 +278,7 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
       std::vector<const std::vector<float>*> ensemble;
       for (int k = 0; k < o.ensemble; ++k)
         ensemble.push_back(&probabilities[std::size_t(s * members + run * o.ensemble + k)]);
-      runs.push_back(score_run(ensemble, test, truth, nc, deployment_bodies));
+      runs.push_back(score_run(ensemble, test, truth, nc, deployment_bodies, o));
     }
 
   for (int s = 0; s < ns; ++s) {
@@ -276,6 +287,7 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
     r.train_windows = inputs[std::size_t(s)].count();
     r.class_f1.assign(std::size_t(nc), 0.0);
     r.body_f1.assign(std::size_t(deployment_bodies), {});
+    r.band_f1.assign(o.deployment_bands.size(), {});
     r.confusion = Eigen::MatrixXi::Zero(nc, nc);
     for (int run = 0; run < o.runs; ++run) {
       const RunScore& x = runs[std::size_t(s * o.runs + run)];
@@ -283,15 +295,26 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
       r.confusion += x.report.confusion;
       for (int c = 0; c < nc; ++c) r.class_f1[std::size_t(c)] += x.report.f1[std::size_t(c)] / o.runs;
       for (int d = 0; d < deployment_bodies; ++d) r.body_f1[std::size_t(d)].push_back(x.body_f1[std::size_t(d)]);
+      for (std::size_t b = 0; b < x.band_f1.size(); ++b) r.band_f1[b].push_back(x.band_f1[b]);
     }
     r.mean = mean_of(r.macro_f1);
     r.sd = sd_of(r.macro_f1);
     t.sources.push_back(r);
   }
-  for (const BenchSource& a : t.sources)
-    for (const BenchSource& b : t.sources)
-      if (is_transfer_source(a.name) && is_baseline(b.name))
-        t.comparisons.push_back(compare_runs(a, b));
+  // The whole deployment population, then (with 2+ bands) band by band.
+  if (o.deployment_bands.size() > 1) t.bands = o.deployment_bands;
+  for (int band = -1; band < int(t.bands.size()); ++band)
+    for (const BenchSource& a : t.sources)
+      for (const BenchSource& b : t.sources)
+        if (is_transfer_source(a.name) && is_baseline(b.name)) {
+          if (band < 0) {
+            t.comparisons.push_back(compare_runs(a, b));
+            continue;
+          }
+          BenchComparison c = compare_runs(a.name, a.band_f1[std::size_t(band)], b.name, b.band_f1[std::size_t(band)]);
+          c.band = t.bands[std::size_t(band)];
+          t.comparisons.push_back(c);
+        }
   const double floor = t.sources.front().mean, ceiling = t.sources.back().mean;
   t.gap = ceiling - floor;
   for (std::size_t i = 0; i < t.sources.size(); ++i)
@@ -303,19 +326,24 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
 
 }  // namespace
 
-BenchComparison compare_runs(const BenchSource& source, const BenchSource& baseline) {
-  if (source.macro_f1.size() != baseline.macro_f1.size() || source.macro_f1.empty())
-    throw Error("har-bench: cannot compare " + std::to_string(source.macro_f1.size()) + " runs of " + source.name +
-                " with " + std::to_string(baseline.macro_f1.size()) + " of " + baseline.name);
-  BenchComparison c{source.name, baseline.name, 0, 0, std::max(source.sd, baseline.sd), 0};
+BenchComparison compare_runs(const std::string& source, const std::vector<double>& source_f1,
+                             const std::string& baseline, const std::vector<double>& baseline_f1) {
+  if (source_f1.size() != baseline_f1.size() || source_f1.empty())
+    throw Error("har-bench: cannot compare " + std::to_string(source_f1.size()) + " runs of " + source + " with " +
+                std::to_string(baseline_f1.size()) + " of " + baseline);
+  BenchComparison c{source, baseline, "", 0, 0, std::max(sd_of(source_f1), sd_of(baseline_f1)), 0};
   std::vector<double> d;
-  for (std::size_t run = 0; run < source.macro_f1.size(); ++run) {
-    d.push_back(source.macro_f1[run] - baseline.macro_f1[run]);
+  for (std::size_t run = 0; run < source_f1.size(); ++run) {
+    d.push_back(source_f1[run] - baseline_f1[run]);
     c.wins += d.back() > 0;
   }
   c.difference = mean_of(d);
   c.paired_sd = sd_of(d);
   return c;
+}
+
+BenchComparison compare_runs(const BenchSource& source, const BenchSource& baseline) {
+  return compare_runs(source.name, source.macro_f1, baseline.name, baseline.macro_f1);
 }
 
 namespace {

@@ -23,11 +23,19 @@ std::string percent(double fraction) {
   return std::isfinite(fraction) ? std::to_string(int(std::lround(100 * fraction))) + " %" : "-";
 }
 
-// "+0.018 (2.0 paired sd; higher in 9 of 10 runs; 1.1 run sd)".
+// "model - copy: +0.018 (2.0 paired sd; higher in 9 runs; 1.1 run sd)",
+// "[xlarge] model - copy: ..." for a band's windows.
 std::string comparison_text(const BenchComparison& c) {
   const auto ratio = [&](double sd) { return sd > 0 ? fixed_text(c.difference / sd, 1) : std::string("-"); };
-  return (c.difference >= 0 ? "+" : "") + fixed_text(c.difference) + " (" + ratio(c.paired_sd) +
+  return (c.band.empty() ? "" : "[" + c.band + "] ") + c.source + " - " + c.baseline + ": " +
+         (c.difference >= 0 ? "+" : "") + fixed_text(c.difference) + " (" + ratio(c.paired_sd) +
          " paired sd; higher in " + std::to_string(c.wins) + " runs; " + ratio(c.run_sd) + " run sd)";
+}
+
+double mean_over_runs(const std::vector<double>& runs) {
+  double m = 0;
+  for (double v : runs) m += v / double(runs.size());
+  return m;
 }
 
 // " (each an ensemble of K classifiers)", or nothing for one classifier a run.
@@ -50,11 +58,13 @@ void write_detail_tables(std::ostringstream& b, const BenchTable& t, const Bench
   b << "</tr>\n";
   for (std::size_t d = 0; d < r.deployment.size(); ++d) {
     b << "<tr><td>" << html_escape(body_text(r.deployment[d])) << "</td>";
-    for (const BenchSource& s : t.sources) {
-      double m = 0;
-      for (double v : s.body_f1[d]) m += v / double(s.body_f1[d].size());
-      b << "<td class=\"num\">" << fixed_text(m) << "</td>";
-    }
+    for (const BenchSource& s : t.sources) b << "<td class=\"num\">" << fixed_text(mean_over_runs(s.body_f1[d])) << "</td>";
+    b << "</tr>\n";
+  }
+  for (std::size_t band = 0; band < t.bands.size(); ++band) {
+    b << "<tr><td>band " << html_escape(t.bands[band]) << " (its bodies' windows)</td>";
+    for (const BenchSource& s : t.sources)
+      b << "<td class=\"num\">" << fixed_text(mean_over_runs(s.band_f1[band])) << "</td>";
     b << "</tr>\n";
   }
   b << "</table>\n<h3>Confusion (summed over runs; rows true, columns predicted)</h3>\n<div class=\"charts\">\n";
@@ -92,8 +102,7 @@ std::string format_bench(const BenchResult& r) {
       o << line;
     }
     o << "  gap (oracle - recorded): " << fixed_text(t.gap) << "\n";
-    for (const BenchComparison& c : t.comparisons)
-      o << "  " << c.source << " - " << c.baseline << ": " << comparison_text(c) << "\n";
+    for (const BenchComparison& c : t.comparisons) o << "  " << comparison_text(c) << "\n";
     o << "\n";
   }
   return o.str();
@@ -116,7 +125,8 @@ std::string bench_json(const BenchResult& r) {
   }
   j["tables"] = nlohmann::json::array();
   for (const BenchTable& t : r.tables) {
-    nlohmann::json jt = {{"labels", t.labels}, {"classes", t.classes}, {"test_support", t.test_support}, {"gap", t.gap}};
+    nlohmann::json jt = {{"labels", t.labels},   {"classes", t.classes}, {"test_support", t.test_support},
+                         {"gap", t.gap},         {"bands", t.bands}};
     jt["sources"] = nlohmann::json::array();
     for (const BenchSource& s : t.sources) {
       nlohmann::json confusion = nlohmann::json::array();
@@ -133,12 +143,14 @@ std::string bench_json(const BenchResult& r) {
                                {"gap_closed", std::isfinite(s.gap_closed) ? nlohmann::json(s.gap_closed) : nlohmann::json()},
                                {"class_f1", s.class_f1},
                                {"body_f1", s.body_f1},
+                               {"band_f1", s.band_f1},
                                {"confusion", confusion}});
     }
     jt["comparisons"] = nlohmann::json::array();
     for (const BenchComparison& c : t.comparisons)
       jt["comparisons"].push_back({{"source", c.source},
                                    {"baseline", c.baseline},
+                                   {"band", c.band.empty() ? nlohmann::json() : nlohmann::json(c.band)},
                                    {"difference", c.difference},
                                    {"paired_sd", c.paired_sd},
                                    {"run_sd", c.run_sd},
@@ -187,7 +199,7 @@ std::vector<std::string> write_bench_report(const std::string& out_dir, const Be
     if (!t.comparisons.empty()) {
       b << "<p>Run by run (run r of every source trains from the same seeds):</p>\n<ul>\n";
       for (const BenchComparison& c : t.comparisons)
-        b << "<li>" << html_escape(c.source + " - " + c.baseline + ": " + comparison_text(c)) << "</li>\n";
+        b << "<li>" << html_escape(comparison_text(c)) << "</li>\n";
       b << "</ul>\n";
     }
 
