@@ -5,15 +5,18 @@
 # Other targets: build, install (PREFIX=/usr/local), package (the .deb in
 # build/), bench, asan (sanitizer build + tests), fuzz (libFuzzer harnesses
 # with ASan + UBSan in build-fuzz/, clang), check-cpu (the numerics tests
-# under every instruction set this CPU allows x 1 and 2 threads), clean.
+# under every instruction set this CPU allows x 1 and 2 threads), lopo (leave
+# one performer out on ../shared/mocap-corpus into LOPO_OUT; PRESET=full for
+# the full preset), clean.
 
 BUILD    ?= build
 JOBS     ?= $(shell nproc)
 CMAKE_FLAGS ?=
 DEMO_OUT ?= demo
 PREFIX   ?= /usr/local
+LOPO_OUT ?= lopo
 
-.PHONY: deps build demo test check-cpu install package bench asan fuzz clean
+.PHONY: deps build demo test check-cpu lopo install package bench asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -35,6 +38,12 @@ test: build
 # scripts/check-numerics.sh: one line per instruction set x thread count.
 check-cpu: build
 	./scripts/check-numerics.sh $(BUILD)
+
+# scripts/lopo.sh: 7 folds of simulate, train and evaluate (docs/lopo.md);
+# resumable, so the same command continues an interrupted run.
+lopo: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target ptnet
+	PTNET=$(BUILD)/ptnet ./scripts/lopo.sh $(LOPO_OUT)
 
 install: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target installables
