@@ -21,6 +21,7 @@ import csv
 import io
 import json
 import os
+import signal
 import sys
 
 # The issue 27 targets: mean RMSE ratio to body scale, mean binary R^2, worst ratio.
@@ -162,6 +163,18 @@ def read_times(path):
     return times
 
 
+def validation_ratio(path):
+    """The model's validation RMSE / body scale's on the same windows (the
+    training performers' retargeted bodies), from its config.json; None if absent."""
+    if not os.path.exists(path):
+        return None
+    metrics = read_json(path).get("metrics", {})
+    try:
+        return float(metrics["val_rmse_kpa"]) / float(metrics["val_rmse_zoom_kpa"])
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        raise LopoError(f"{path}: expected metrics.val_rmse_kpa and metrics.val_rmse_zoom_kpa > 0")
+
+
 def fold_result(work, subject):
     fold = os.path.join(work, f"performer_{subject}")
     path = os.path.join(fold, "report", "metrics.json")
@@ -192,6 +205,7 @@ def fold_result(work, subject):
     r["ratio"] = r["rmse_model_kpa"] / r["rmse_body_scale_kpa"]
     _, test = read_csv(os.path.join(fold, "test_clips.csv"), ["file", "subject"])
     _, train = read_csv(os.path.join(fold, "train_clips.csv"), ["file", "subject"])
+    r["val_ratio"] = validation_ratio(os.path.join(fold, "model", "config.json"))
     r["clips"] = len(test)
     r["train_clips"] = len(train)
     times_path = os.path.join(fold, "times.txt")
@@ -212,10 +226,10 @@ def weighted(rows, key):
 
 def summarise(rows):
     keys = ["rmse_model_kpa", "rmse_body_scale_kpa", "ratio", "binary_r2_model", "binary_r2_body_scale",
-            "rmse_floor_kpa", "binary_r2_floor"]
+            "rmse_floor_kpa", "binary_r2_floor", "val_ratio"]
     by_performer = {k: (None if any(r[k] is None for r in rows) else mean([r[k] for r in rows])) for k in keys}
     by_performer.update(clips=sum(r["clips"] for r in rows), pairs=sum(r["pairs"] for r in rows))
-    by_pair = {k: weighted(rows, k) for k in keys if k != "ratio"}
+    by_pair = {k: weighted(rows, k) for k in keys if k not in ("ratio", "val_ratio")}
     by_pair["ratio"] = by_pair["rmse_model_kpa"] / by_pair["rmse_body_scale_kpa"]
     by_pair.update(clips=by_performer["clips"], pairs=by_performer["pairs"])
     return by_performer, by_pair
@@ -227,13 +241,14 @@ def fmt(x, digits):
 
 def table(rows, by_performer, by_pair):
     lines = ["| performer | clips | pairs | RMSE model (kPa) | RMSE body scale | x body scale | "
-             "bin. R^2 model | bin. R^2 body scale | RMSE floor |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "bin. R^2 model | bin. R^2 body scale | RMSE floor | val. x body scale |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
 
     def line(name, r):
         return (f"| {name} | {r['clips']} | {r['pairs']} | {fmt(r['rmse_model_kpa'], 2)} | "
                 f"{fmt(r['rmse_body_scale_kpa'], 2)} | {fmt(r['ratio'], 2)} | {fmt(r['binary_r2_model'], 3)} | "
-                f"{fmt(r['binary_r2_body_scale'], 3)} | {fmt(r['rmse_floor_kpa'], 3)} |")
+                f"{fmt(r['binary_r2_body_scale'], 3)} | {fmt(r['rmse_floor_kpa'], 3)} | "
+                f"{fmt(r.get('val_ratio'), 2)} |")
 
     lines += [line(r["performer"], r) for r in rows]
     lines.append(line("**mean over performers**", by_performer))
@@ -266,7 +281,8 @@ def aggregate(work):
     result = {
         "what": "leave one performer out: train on the other performers' clips (take 1, retargeted bodies), "
                 "test on the performer's clips (take 2, original bodies); RMSE and binary R^2 are the means "
-                "over a performer's pairs (ptnet evaluate's unseen average); ratio = model RMSE / body-scale RMSE",
+                "over a performer's pairs (ptnet evaluate's unseen average); ratio = model RMSE / body-scale RMSE; "
+                "val_ratio = the same ratio on the training run's validation windows (the other performers)",
         "settings": settings,
         "complete": not missing,
         "missing_performers": missing,
@@ -278,7 +294,7 @@ def aggregate(work):
     write_atomic(os.path.join(work, "lopo.json"), json.dumps(result, indent=2) + "\n")
 
     preset = settings.get("preset", "?")
-    print(f"leave one performer out, preset {preset}, seed {settings.get('seed', '?')}: "
+    print(f"leave one performer out, preset {preset}, training seed {settings.get('seed', '?')}: "
           f"{len(done)} of {len(subjects)} folds" + (f" (missing: {', '.join(missing)})" if missing else ""))
     print(table(rows, by_performer, by_pair))
     print(f"targets (issue 27): mean x body scale {by_performer['ratio']:.2f} (<= {kTargetMeanRatio}: "
@@ -309,4 +325,5 @@ def main(argv):
 
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `| head` ends the output quietly
     sys.exit(main(sys.argv))

@@ -5,14 +5,14 @@
 # (all their takes, as take 1) simulated on the 16 retargeted bodies, and
 # evaluate it on P's clips (as take 2) simulated on the 4 original bodies, so
 # `ptnet evaluate` reports P's pairs as "unseen"; otherwise the Table 2
-# protocol of docs/results.md (bodies --seed 1, simulate --placement follow).
+# protocol of docs/results.md (bodies and simulate --seed 1, --placement follow).
 # Then scripts/lopo.py aggregate prints the table and writes WORK/lopo.json.
 #
 # Preset: fast by default (12 epochs, 1 LibTorch thread, ~5-10 min a fold
 # on 2 cores); PRESET=full (30 epochs, mirrored windows) overrides it.
 # Environment:
 #   PRESET      fast | full | paper (default fast)
-#   SEED        bodies, sensor noise and training seed (default 1)
+#   SEED        the training seed (default 1; bodies and sensor noise keep seed 1)
 #   TRAIN_ARGS  more `ptnet train` flags (e.g. "--epochs 1 --samples-per-epoch 256" to try it out)
 #   CORPUS      the corpus folder (default ../shared/mocap-corpus beside the source folder)
 #   PTNET       the ptnet binary (default build/ptnet of the source folder)
@@ -103,11 +103,11 @@ performers_of() {
 sequences_of() { h5dump -A -g /sequences "$1" | grep -c 'ATTRIBUTE "performer"'; }
 
 if [ ! -f "$work/bodies.csv" ]; then
-  step "$work/bodies.log" "$ptnet" bodies --males 8 --females 8 --originals 2,2 --seed "$seed" --out "$work/bodies.csv"
+  step "$work/bodies.log" "$ptnet" bodies --males 8 --females 8 --originals 2,2 --seed 1 --out "$work/bodies.csv"
 fi
 folds=$(python3 "$src/scripts/lopo.py" folds "$corpus/clips.csv" "$work/bodies.csv" "$work") || exit 1
 n=$(wc -l <<<"$folds")
-echo "lopo: $n folds, preset $preset, seed $seed${train_args:+, train $train_args}, in $work"
+echo "lopo: $n folds, preset $preset, training seed $seed${train_args:+, train $train_args}, in $work"
 
 i=0
 while read -r p n_train n_test; do
@@ -118,7 +118,7 @@ while read -r p n_train n_test; do
     echo "$head: report exists, skipped"
     continue
   fi
-  common=(--placement follow --seed "$seed" --threads 1)
+  common=(--placement follow --seed 1 --threads 1)
   [ -f "$dir/train.h5" ] || timed simulate_train "$dir/simulate_train.log" \
     "$ptnet" simulate --clips "$dir/train_clips.csv" --bodies "$work/bodies_retargeted.csv" --out "$dir/train.h5" "${common[@]}"
   [ -f "$dir/test.h5" ] || timed simulate_test "$dir/simulate_test.log" \
