@@ -134,7 +134,7 @@ struct TrainOptions {
   // frame network's); the frame network keeps the preset's window and head.
   void set_arch(Arch arch);
   // One line naming the architecture and schedule ("frame 16/32/48 on zoom-aligned
-  // input, window 1, batch 64, lr 0.003 halved every 4 epochs, ..."): the
+  // input, window 1, batch 64, lr 0.0015 halved every 4 epochs, ..."): the
   // presets are described from their values, never by hand.
   std::string summary() const;
 };
