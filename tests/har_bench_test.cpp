@@ -331,3 +331,19 @@ TEST(HarBench, ComparisonsAreRunByRun) {
             std::string::npos);
 }
 
+
+TEST(HarBench, ComparisonsPrintTheirBandAndRunsWonOutOfRuns) {
+  BenchResult r;
+  r.runs = 10;
+  BenchTable t;
+  t.labels = "activity";
+  t.comparisons.push_back({"model", "copy", "", 0.02, 0.01, 0.02, 9});
+  t.comparisons.push_back({"model", "copy", "xlarge", 0.04, 0.02, 0.02, 10});
+  r.tables.push_back(t);
+  const std::string text = format_bench(r);
+  EXPECT_NE(text.find("  model - copy: +0.020 (2.0 paired sd; higher in 9 of 10 runs; 1.0 run sd)"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  [xlarge] model - copy: +0.040 (2.0 paired sd; higher in 10 of 10 runs; 2.0 run sd)"),
+            std::string::npos)
+      << text;
+}

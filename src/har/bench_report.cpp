@@ -23,13 +23,13 @@ std::string percent(double fraction) {
   return std::isfinite(fraction) ? std::to_string(int(std::lround(100 * fraction))) + " %" : "-";
 }
 
-// "model - copy: +0.018 (2.0 paired sd; higher in 9 runs; 1.1 run sd)",
+// "model - copy: +0.018 (2.0 paired sd; higher in 9 of 10 runs; 1.1 run sd)",
 // "[xlarge] model - copy: ..." for a band's windows.
-std::string comparison_text(const BenchComparison& c) {
+std::string comparison_text(const BenchComparison& c, int runs) {
   const auto ratio = [&](double sd) { return sd > 0 ? fixed_text(c.difference / sd, 1) : std::string("-"); };
   return (c.band.empty() ? "" : "[" + c.band + "] ") + c.source + " - " + c.baseline + ": " +
          (c.difference >= 0 ? "+" : "") + fixed_text(c.difference) + " (" + ratio(c.paired_sd) +
-         " paired sd; higher in " + std::to_string(c.wins) + " runs; " + ratio(c.run_sd) + " run sd)";
+         " paired sd; higher in " + std::to_string(c.wins) + " of " + std::to_string(runs) + " runs; " + ratio(c.run_sd) + " run sd)";
 }
 
 double mean_over_runs(const std::vector<double>& runs) {
@@ -102,7 +102,7 @@ std::string format_bench(const BenchResult& r) {
       o << line;
     }
     o << "  gap (oracle - recorded): " << fixed_text(t.gap) << "\n";
-    for (const BenchComparison& c : t.comparisons) o << "  " << comparison_text(c) << "\n";
+    for (const BenchComparison& c : t.comparisons) o << "  " << comparison_text(c, r.runs) << "\n";
     o << "\n";
   }
   return o.str();
@@ -199,7 +199,7 @@ std::vector<std::string> write_bench_report(const std::string& out_dir, const Be
     if (!t.comparisons.empty()) {
       b << "<p>Run by run (run r of every source trains from the same seeds):</p>\n<ul>\n";
       for (const BenchComparison& c : t.comparisons)
-        b << "<li>" << html_escape(comparison_text(c)) << "</li>\n";
+        b << "<li>" << html_escape(comparison_text(c, r.runs)) << "</li>\n";
       b << "</ul>\n";
     }
 
