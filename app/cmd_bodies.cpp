@@ -1,10 +1,13 @@
 // ptnet bodies: sample the paper's bodies into a CSV.
 //
 //   ptnet bodies --males 8 --females 8 --originals 2,2 --seed 1 --out bodies.csv
+//   ptnet bodies --sampling cover --out bodies.csv    # retargeted bodies reach the tails
 //
 // Retargeted bodies: male 175 +- 15 cm, 75 +- 10 kg; female 165 +- 15 cm,
-// 65 +- 10 kg (Gaussian, clipped to the valid ranges); held-out `original`
-// bodies (female,male counts) from an independent random stream.
+// 65 +- 10 kg (Gaussian draws, clipped to the valid ranges; or, with
+// --sampling cover, a Latin hypercube over mean +- 2.5 sd); held-out
+// `original` bodies (female,male counts, Gaussian) from an independent
+// random stream.
 #include <iostream>
 #include <sstream>
 
@@ -19,6 +22,7 @@ namespace {
 struct BodiesCli {
   int males = 8, females = 8;
   std::string originals = "2,2";
+  std::string sampling = "paper";
   std::uint64_t seed = 1;
   std::string out;
   bool force = false;
@@ -30,7 +34,7 @@ void run(const BodiesCli& c) {
   std::istringstream ss(c.originals);
   if (!(ss >> of >> comma >> om) || comma != ',' || (ss >> extra) || of < 0 || om < 0)
     throw Error("--originals: expected FEMALES,MALES like 2,2, found \"" + c.originals + "\"");
-  const auto bodies = sample_bodies(c.males, c.females, of, om, c.seed);
+  const auto bodies = sample_bodies(c.males, c.females, of, om, c.seed, parse_body_sampling(c.sampling));
   write_text_file(c.out, format_bodies_csv(bodies), c.force);
   if (!globals().quiet) std::cerr << "bodies: wrote " << bodies.size() << " bodies to " << c.out << "\n";
 }
@@ -41,6 +45,10 @@ void setup(CLI::App& app) {
   cmd->add_option("--males", c->males, "Retargeted male bodies")->capture_default_str()->check(CLI::Range(0, 10000));
   cmd->add_option("--females", c->females, "Retargeted female bodies")->capture_default_str()->check(CLI::Range(0, 10000));
   cmd->add_option("--originals", c->originals, "Held-out original bodies: FEMALES,MALES")->capture_default_str();
+  cmd->add_option("--sampling", c->sampling,
+                  "Retargeted bodies: paper (Gaussian draws) or cover (a Latin hypercube over mean +- 2.5 sd)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"paper", "cover"}));
   cmd->add_option("--seed", c->seed, "Seed")->capture_default_str();
   cmd->add_option("--out", c->out, "Output CSV (id,sex,height_cm,weight_kg,role)")->required();
   cmd->add_flag("--force", c->force, "Overwrite an existing file");

@@ -164,9 +164,15 @@ void bind_motion(py::module_& m) {
                number_text(b.weight_kg) + ", id='" + b.id + "', role='" + b.role + "')";
       });
 
-  m.def("sample_bodies", &sample_bodies, py::arg("males") = 8, py::arg("females") = 8, py::arg("originals_f") = 0,
-        py::arg("originals_m") = 0, py::arg("seed") = 1,
-        "Bodies drawn as in the paper (ptnet bodies): ids f01.., m01.. (retargeted), of01.., om01.. (original).");
+  m.def(
+      "sample_bodies",
+      [](int males, int females, int originals_f, int originals_m, std::uint64_t seed, const std::string& sampling) {
+        return sample_bodies(males, females, originals_f, originals_m, seed, parse_body_sampling(sampling));
+      },
+      py::arg("males") = 8, py::arg("females") = 8, py::arg("originals_f") = 0, py::arg("originals_m") = 0,
+      py::arg("seed") = 1, py::arg("sampling") = "paper",
+      "Bodies drawn as in the paper (ptnet bodies): ids f01.., m01.. (retargeted), of01.., om01.. (original); "
+      "sampling 'paper' (Gaussian draws) or 'cover' (a Latin hypercube over mean +- 2.5 sd).");
   m.def("read_bodies_csv", &read_bodies_csv, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
   m.def("sequence_seed", &sequence_seed, py::arg("seed"), py::arg("name"),
         "The sensor seed `ptnet simulate --seed SEED` gives sequence NAME (<motion_id>__<body_id>).");

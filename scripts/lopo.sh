@@ -13,6 +13,9 @@
 # Environment:
 #   PRESET      fast | full | paper (default fast)
 #   SEED        the training seed (default 1; bodies and sensor noise keep seed 1)
+#   SAMPLING    the retargeted training bodies: paper (Gaussian draws, default) or
+#               cover (a Latin hypercube over mean +- 2.5 sd: 132-208 cm); the
+#               original test bodies are the same either way
 #   TRAIN_ARGS  more `ptnet train` flags (e.g. "--epochs 1 --samples-per-epoch 256" to try it out)
 #   CORPUS      the corpus folder (default ../shared/mocap-corpus beside the source folder)
 #   PTNET       the ptnet binary (default build/ptnet of the source folder)
@@ -37,12 +40,14 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 work=$1
 preset=${PRESET:-fast}
 seed=${SEED:-1}
+sampling=${SAMPLING:-paper}
 train_args=${TRAIN_ARGS:-}
 corpus=${CORPUS:-$src/../shared/mocap-corpus}
 ptnet=${PTNET:-$src/build/ptnet}
 
 case "$preset" in fast | full | paper) ;; *) die "PRESET: expected fast, full or paper, found '$preset'" ;; esac
 [[ "$seed" =~ ^[0-9]+$ ]] || die "SEED: expected a whole number, found '$seed'"
+case "$sampling" in paper | cover) ;; *) die "SAMPLING: expected paper or cover, found '$sampling'" ;; esac
 if [ -z "${CORPUS:-}" ] && [ ! -d "$src/../shared" ]; then
   die "$src/../shared: no such folder (the shared data beside the source folder; or set CORPUS)"
 fi
@@ -61,8 +66,12 @@ settings="preset=$preset
 seed=$seed
 train_args=$train_args
 corpus=$corpus"
+# SAMPLING enters the settings only when it is not the default, so work
+# folders made before it existed still resume.
+[ "$sampling" = paper ] || settings="$settings
+sampling=$sampling"
 if [ -f "$work/settings.txt" ]; then
-  recorded=$(grep -E '^(preset|seed|train_args|corpus)=' "$work/settings.txt")
+  recorded=$(grep -E '^(preset|seed|train_args|corpus|sampling)=' "$work/settings.txt")
   [ "$recorded" = "$settings" ] || die "$work/settings.txt: made with other settings ($(echo $recorded)); use another work folder"
 else
   cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
@@ -103,7 +112,7 @@ performers_of() {
 sequences_of() { h5dump -A -g /sequences "$1" | grep -c 'ATTRIBUTE "performer"'; }
 
 if [ ! -f "$work/bodies.csv" ]; then
-  step "$work/bodies.log" "$ptnet" bodies --males 8 --females 8 --originals 2,2 --seed 1 --out "$work/bodies.csv"
+  step "$work/bodies.log" "$ptnet" bodies --males 8 --females 8 --originals 2,2 --seed 1 --sampling "$sampling" --out "$work/bodies.csv"
 fi
 folds=$(python3 "$src/scripts/lopo.py" folds "$corpus/clips.csv" "$work/bodies.csv" "$work") || exit 1
 n=$(wc -l <<<"$folds")

@@ -1,6 +1,7 @@
 // Body attributes and the bodies CSV (issue 3).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -38,6 +39,53 @@ TEST(BodySpec, SampledBodiesRoundTripThroughCsv) {
   // Adding originals never changes the retargeted bodies (independent streams).
   const auto fewer = sample_bodies(8, 8, 0, 0, 5);
   for (std::size_t i = 0; i < fewer.size(); ++i) EXPECT_DOUBLE_EQ(fewer[i].height_cm, bodies[i].height_cm);
+}
+
+TEST(BodySpec, CoverSamplingReachesTheTailsEvenly) {
+  const auto paper = sample_bodies(8, 8, 2, 2, 1);
+  const auto cover = sample_bodies(8, 8, 2, 2, 1, BodySampling::cover);
+  ASSERT_EQ(cover.size(), 20u);
+  for (Sex sex : {Sex::female, Sex::male}) {
+    const BodyDistribution& d = sex == Sex::male ? kPaperMale : kPaperFemale;
+    std::vector<double> h, w;
+    for (const auto& b : cover)
+      if (b.sex == sex && b.role == "retargeted") h.push_back(b.height_cm), w.push_back(b.weight_kg);
+    ASSERT_EQ(h.size(), 8u);
+    std::sort(h.begin(), h.end());
+    std::sort(w.begin(), w.end());
+    // One body in each of 8 strata of mean +- 2.5 sd: evenly spaced centres.
+    const double h_step = 2 * kCoverSd * d.height_sd_cm / 8, w_step = 2 * kCoverSd * d.weight_sd_kg / 8;
+    for (int i = 0; i < 8; ++i) {
+      EXPECT_NEAR(h[std::size_t(i)], d.height_mean_cm - kCoverSd * d.height_sd_cm + (i + 0.5) * h_step, 0.051);
+      EXPECT_NEAR(w[std::size_t(i)], d.weight_mean_kg - kCoverSd * d.weight_sd_kg + (i + 0.5) * w_step, 0.051);
+    }
+  }
+  // The range reaches the paper's held-out 134 cm body (seed 1), which every
+  // Gaussian-drawn training body of that seed misses (the lowest: 143.9 cm).
+  double lowest_cover = 1e9, lowest_paper = 1e9, lowest_original = 1e9;
+  for (std::size_t i = 0; i < cover.size(); ++i) {
+    if (cover[i].role == "original") {
+      EXPECT_EQ(cover[i].height_cm, paper[i].height_cm);  // originals: the same draws
+      EXPECT_EQ(cover[i].weight_kg, paper[i].weight_kg);
+      lowest_original = std::min(lowest_original, paper[i].height_cm);
+      continue;
+    }
+    lowest_cover = std::min(lowest_cover, cover[i].height_cm);
+    lowest_paper = std::min(lowest_paper, paper[i].height_cm);
+  }
+  EXPECT_LT(lowest_cover, lowest_original);
+  EXPECT_GT(lowest_paper, lowest_original);
+  // Same seed, same bodies; another seed, another pairing of strata.
+  const auto again = sample_bodies(8, 8, 2, 2, 1, BodySampling::cover);
+  const auto other = sample_bodies(8, 8, 2, 2, 2, BodySampling::cover);
+  int differ = 0;
+  for (std::size_t i = 0; i < cover.size(); ++i) {
+    EXPECT_EQ(again[i].weight_kg, cover[i].weight_kg);
+    differ += other[i].weight_kg != cover[i].weight_kg;
+  }
+  EXPECT_GT(differ, 0);
+  EXPECT_EQ(parse_body_sampling("cover"), BodySampling::cover);
+  EXPECT_THROW(parse_body_sampling("uniform"), Error);
 }
 
 TEST(BodySpec, ImpossibleAttributesAreErrors) {

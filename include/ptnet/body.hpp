@@ -120,13 +120,24 @@ PosedBody pose_body(const Body& body, const Pose& pose);
 // Whole-body centre of mass (m): segment masses at their capsule midpoints.
 Eigen::Vector3d centre_of_mass(const Body& body, const Pose& pose);
 
+// How the retargeted bodies of sample_bodies are drawn from each sex's
+// distribution of the paper (stature and weight independent):
+//   paper  Gaussian draws, as in the paper;
+//   cover  a Latin hypercube over mean +- kCoverSd sd of stature and of
+//          weight, so that a few bodies reach the tails evenly (16 bodies:
+//          132-208 cm, 43-97 kg) where Gaussian draws leave gaps.
+enum class BodySampling { paper, cover };
+inline constexpr double kCoverSd = 2.5;
+BodySampling parse_body_sampling(const std::string& name);  // "paper" | "cover"
+
 // Bodies sampled as in the paper: `males` (175 +- 15 cm, 75 +- 10 kg) and
-// `females` (165 +- 15 cm, 65 +- 10 kg) retargeted bodies, Gaussian, clipped
-// to the valid ranges, rounded to 0.1 cm / 0.1 kg; plus held-out "original"
-// bodies (originals_f female, originals_m male) from an independent random
-// stream, so adding originals never changes the retargeted bodies.
+// `females` (165 +- 15 cm, 65 +- 10 kg) retargeted bodies, drawn as
+// `sampling` says, clipped to the valid ranges, rounded to 0.1 cm / 0.1 kg;
+// plus held-out "original" bodies (originals_f female, originals_m male),
+// Gaussian draws from an independent random stream, so adding originals
+// never changes the retargeted bodies (nor the sampling the originals).
 // Ids: f01.., m01.. (retargeted), of01.., om01.. (original).
 std::vector<BodySpec> sample_bodies(int males, int females, int originals_f, int originals_m,
-                                    std::uint64_t seed);
+                                    std::uint64_t seed, BodySampling sampling = BodySampling::paper);
 
 }  // namespace ptnet

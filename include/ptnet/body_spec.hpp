@@ -8,6 +8,7 @@
 //   ptnet::check_body_range(t, "target body");  // "target body: height_cm 300 outside 100-230"
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -61,5 +62,11 @@ double standard_normal(std::mt19937_64& rng);
 // A body drawn from the paper's distribution for `sex` (paper.hpp), height
 // then weight from `rng`, clamped to the accepted range, rounded to 0.1.
 BodySpec draw_paper_body(std::mt19937_64& rng, Sex sex, const std::string& id, const std::string& role);
+// `count` points of a Latin hypercube over [0, 1)^2: point i sits at the
+// centres of strata a[i] and b[i] of `count` each, a and b two permutations
+// of 0..count-1 drawn from `rng` (Fisher-Yates on the raw generator: the
+// same points with every standard library). Each stratum of both axes is
+// used once: `count` points cover both ranges evenly.
+std::vector<std::array<double, 2>> latin_hypercube(int count, std::mt19937_64& rng);
 
 }  // namespace ptnet

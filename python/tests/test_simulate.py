@@ -78,6 +78,15 @@ class SimulateTest(unittest.TestCase):
         self.assertEqual([(b.id, b.sex, b.height_cm, b.weight_kg, b.role) for b in mine],
                          [(b.id, b.sex, b.height_cm, b.weight_kg, b.role) for b in theirs])
 
+    def test_cover_sampling_reaches_the_tails(self):
+        paper = ptnet.sample_bodies(males=8, females=8, seed=1)
+        cover = ptnet.sample_bodies(males=8, females=8, seed=1, sampling="cover")
+        heights = sorted(b.height_cm for b in cover if b.sex == "female")
+        self.assertAlmostEqual(heights[0], 165 - 2.5 * 15 + 0.5 * 75 / 8, places=1)  # the lowest stratum's centre
+        self.assertLess(min(b.height_cm for b in cover), min(b.height_cm for b in paper))
+        with self.assertRaisesRegex(ValueError, "expected paper or cover"):
+            ptnet.sample_bodies(sampling="uniform")
+
     def test_metrics(self):
         t = np.zeros((2, 80, 28), np.float32)
         t[:, 10:20, 5:9] = 40

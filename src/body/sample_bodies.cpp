@@ -1,6 +1,7 @@
 // Body sets sampled as in the paper (PressureTransferNet, Sec. 3; the
 // distribution: ptnet/paper.hpp, the draw: draw_paper_body).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -17,10 +18,28 @@ std::string numbered(const char* prefix, int i) {
   return buf;
 }
 
+// `count` bodies of `sex` on a Latin hypercube over mean +- kCoverSd sd.
+void cover_bodies(std::vector<BodySpec>& out, std::mt19937_64& rng, Sex sex, int count, const char* prefix) {
+  const BodyDistribution& d = sex == Sex::male ? kPaperMale : kPaperFemale;
+  const std::vector<std::array<double, 2>> points = latin_hypercube(count, rng);
+  for (int i = 0; i < count; ++i) {
+    const double h = d.height_mean_cm + (2 * points[std::size_t(i)][0] - 1) * kCoverSd * d.height_sd_cm;
+    const double w = d.weight_mean_kg + (2 * points[std::size_t(i)][1] - 1) * kCoverSd * d.weight_sd_kg;
+    out.push_back({numbered(prefix, i + 1), sex, std::round(std::clamp(h, kMinHeightCm, kMaxHeightCm) * 10) / 10,
+                   std::round(std::clamp(w, kMinWeightKg, kMaxWeightKg) * 10) / 10, "retargeted"});
+  }
+}
+
 }  // namespace
 
+BodySampling parse_body_sampling(const std::string& name) {
+  if (name == "paper") return BodySampling::paper;
+  if (name == "cover") return BodySampling::cover;
+  throw Error("body sampling: expected paper or cover, found '" + name + "'");
+}
+
 std::vector<BodySpec> sample_bodies(int males, int females, int originals_f, int originals_m,
-                                    std::uint64_t seed) {
+                                    std::uint64_t seed, BodySampling sampling) {
   if (males < 0 || females < 0 || originals_f < 0 || originals_m < 0)
     throw Error("sample_bodies: counts must be >= 0");
   if (males + females + originals_f + originals_m == 0) throw Error("sample_bodies: no bodies requested");
@@ -29,10 +48,16 @@ std::vector<BodySpec> sample_bodies(int males, int females, int originals_f, int
   std::mt19937_64 rf(seed * 4 + 0x9e3779b97f4a7c15ULL), rm(seed * 4 + 1 + 0x9e3779b97f4a7c15ULL);
   std::mt19937_64 of(seed * 4 + 2 + 0x9e3779b97f4a7c15ULL), om(seed * 4 + 3 + 0x9e3779b97f4a7c15ULL);
   std::vector<BodySpec> out;
-  for (int i = 1; i <= females; ++i) out.push_back(draw_paper_body(rf, Sex::female, numbered("f", i), "retargeted"));
-  for (int i = 1; i <= males; ++i) out.push_back(draw_paper_body(rm, Sex::male, numbered("m", i), "retargeted"));
+  if (sampling == BodySampling::cover) {
+    cover_bodies(out, rf, Sex::female, females, "f");
+    cover_bodies(out, rm, Sex::male, males, "m");
+  } else {
+    for (int i = 1; i <= females; ++i) out.push_back(draw_paper_body(rf, Sex::female, numbered("f", i), "retargeted"));
+    for (int i = 1; i <= males; ++i) out.push_back(draw_paper_body(rm, Sex::male, numbered("m", i), "retargeted"));
+  }
   for (int i = 1; i <= originals_f; ++i) out.push_back(draw_paper_body(of, Sex::female, numbered("of", i), "original"));
   for (int i = 1; i <= originals_m; ++i) out.push_back(draw_paper_body(om, Sex::male, numbered("om", i), "original"));
+  for (const BodySpec& b : out) validate(b);
   return out;
 }
 

@@ -133,6 +133,20 @@ double standard_normal(std::mt19937_64& rng) {
   return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
 }
 
+std::vector<std::array<double, 2>> latin_hypercube(int count, std::mt19937_64& rng) {
+  auto permutation = [&] {
+    std::vector<int> p(std::size_t(std::max(0, count)), 0);
+    for (int i = 0; i < count; ++i) p[std::size_t(i)] = i;
+    for (int i = count - 1; i > 0; --i) std::swap(p[std::size_t(i)], p[std::size_t(rng() % std::uint64_t(i + 1))]);
+    return p;
+  };
+  const std::vector<int> a = permutation(), b = permutation();
+  std::vector<std::array<double, 2>> out;
+  for (int i = 0; i < count; ++i)
+    out.push_back({(a[std::size_t(i)] + 0.5) / count, (b[std::size_t(i)] + 0.5) / count});
+  return out;
+}
+
 BodySpec draw_paper_body(std::mt19937_64& rng, Sex sex, const std::string& id, const std::string& role) {
   const BodyDistribution& d = sex == Sex::male ? kPaperMale : kPaperFemale;
   BodySpec b;

@@ -46,23 +46,15 @@ const BodyBand& body_band(const std::string& name) {
 std::vector<BodySpec> band_bodies(const BodyBand& band, int count, std::uint64_t seed, const std::string& prefix,
                                   const std::string& role) {
   if (count < 1) throw Error("har-bench: a band needs at least 1 body, found " + std::to_string(count));
-  // A Latin hypercube: stature stratum and BMI stratum each a seeded
-  // permutation of 0..count-1 (Fisher-Yates on the raw generator: the same
-  // bodies with every standard library), a point at the stratum's centre.
+  // A Latin hypercube over stature and BMI (body_spec.hpp).
   std::mt19937_64 rng(sequence_seed(seed, band.name + "/" + prefix));
-  auto permutation = [&] {
-    std::vector<int> p(std::size_t(count), 0);
-    for (int i = 0; i < count; ++i) p[std::size_t(i)] = i;
-    for (int i = count - 1; i > 0; --i) std::swap(p[std::size_t(i)], p[std::size_t(rng() % std::uint64_t(i + 1))]);
-    return p;
-  };
-  const std::vector<int> hs = permutation(), bs = permutation();
+  const std::vector<std::array<double, 2>> points = latin_hypercube(count, rng);
   std::vector<BodySpec> out;
   for (int i = 0; i < count; ++i) {
     BodySpec b;
     b.id = prefix + std::to_string(i + 1);
     b.sex = i % 2 == 0 ? Sex::female : Sex::male;
-    const double u = (hs[std::size_t(i)] + 0.5) / count, v = (bs[std::size_t(i)] + 0.5) / count;
+    const double u = points[std::size_t(i)][0], v = points[std::size_t(i)][1];
     b.height_cm = std::round((band.height_min_cm + u * (band.height_max_cm - band.height_min_cm)) * 10) / 10;
     const double bmi = band.bmi_min + v * (band.bmi_max - band.bmi_min);
     b.weight_kg = std::round(bmi * b.height_cm * b.height_cm / 1000) / 10;
