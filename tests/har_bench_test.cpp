@@ -97,12 +97,15 @@ TEST(HarBenchBands, BodiesLieInTheirBandAndCoverIt) {
 
 TEST(HarBenchBands, DeploymentBandsLieOutsideTheRecordedOne) {
   const BodyBand& mid = body_band("mid");
-  for (const char* name : {"small", "large", "xsmall", "xlarge", "short-light", "tall-heavy", "light", "heavy", "short", "tall"}) {
-    const BodyBand& b = body_band(name);
+  int deployment = 0;
+  for (const BodyBand& b : body_bands()) {
+    if (b.name == "mid" || b.name == "all") continue;
+    ++deployment;
     const bool outside_height = b.height_max_cm < mid.height_min_cm || b.height_min_cm > mid.height_max_cm;
     const bool outside_bmi = b.bmi_max < mid.bmi_min || b.bmi_min > mid.bmi_max;
-    EXPECT_TRUE(outside_height || outside_bmi) << name;
+    EXPECT_TRUE(outside_height || outside_bmi) << b.name;
   }
+  EXPECT_EQ(deployment, 12);
   const BodyBand& all = body_band("all");
   for (const BodyBand& b : body_bands()) {
     EXPECT_LE(all.height_min_cm, b.height_min_cm) << b.name;
@@ -295,17 +298,32 @@ TEST(HarBench, RunsOfEverySourceTrainFromTheSameSeeds) {
   ASSERT_EQ(t.sources.size(), 4u);
   ASSERT_EQ(t.sources[1].macro_f1.size(), 2u);
   EXPECT_EQ(t.sources[1].macro_f1, t.sources[2].macro_f1) << "the same windows and seeds, the same scores";
-  // The whole population, then each of its two bands (xsmall, xlarge).
-  ASSERT_EQ(t.comparisons.size(), 3u);
+  // The whole population, then each of its two bands (xsmall, xlarge): the
+  // transfer against the baseline and against the oracle, the oracle
+  // against the baseline (the headroom).
+  ASSERT_EQ(t.comparisons.size(), 9u);
   EXPECT_EQ(t.bands, o.deployment_bands);
+  const BenchSource& copy = t.sources[2];
+  const BenchSource& oracle = t.sources[3];
+  ASSERT_EQ(oracle.name, "oracle");
+  const std::pair<std::string, std::string> expected[] = {
+      {"model-mean", "copy"}, {"model-mean", "oracle"}, {"oracle", "copy"}};
   for (std::size_t i = 0; i < t.comparisons.size(); ++i) {
     const BenchComparison& c = t.comparisons[i];
-    EXPECT_EQ(c.band, i == 0 ? "" : o.deployment_bands[i - 1]);
-    EXPECT_EQ(c.source, "model-mean");
-    EXPECT_EQ(c.baseline, "copy");
-    EXPECT_EQ(c.difference, 0.0);
-    EXPECT_EQ(c.paired_sd, 0.0);
-    EXPECT_EQ(c.wins, 0);
+    const int band = int(i / 3) - 1;
+    EXPECT_EQ(c.band, band < 0 ? "" : o.deployment_bands[std::size_t(band)]);
+    EXPECT_EQ(std::make_pair(c.source, c.baseline), expected[i % 3]) << i;
+    if (c.baseline == "copy" && c.source == "model-mean") {
+      EXPECT_EQ(c.difference, 0.0);
+      EXPECT_EQ(c.paired_sd, 0.0);
+      EXPECT_EQ(c.wins, 0);
+      continue;
+    }
+    // model-mean's windows are copy's: against the oracle it is copy.
+    const std::vector<double>& o_runs = band < 0 ? oracle.macro_f1 : oracle.band_f1[std::size_t(band)];
+    const std::vector<double>& c_runs = band < 0 ? copy.macro_f1 : copy.band_f1[std::size_t(band)];
+    const double headroom = ((o_runs[0] - c_runs[0]) + (o_runs[1] - c_runs[1])) / 2;
+    EXPECT_NEAR(c.difference, c.source == "oracle" ? headroom : -headroom, 1e-12) << i;
   }
 }
 

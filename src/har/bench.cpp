@@ -301,12 +301,18 @@ BenchTable score_table(const std::vector<Synthesis>& sources, const Windows& rec
     r.sd = sd_of(r.macro_f1);
     t.sources.push_back(r);
   }
-  // The whole deployment population, then (with 2+ bands) band by band.
+  // The whole deployment population, then (with 2+ bands) band by band:
+  // every transfer against every baseline and against the oracle; the
+  // oracle against every baseline (the largest margin a perfect transfer
+  // would show: the benchmark's headroom).
   if (o.deployment_bands.size() > 1) t.bands = o.deployment_bands;
+  const auto compared = [](const std::string& a, const std::string& b) {
+    return (is_transfer_source(a) && (is_baseline(b) || b == "oracle")) || (a == "oracle" && is_baseline(b));
+  };
   for (int band = -1; band < int(t.bands.size()); ++band)
     for (const BenchSource& a : t.sources)
       for (const BenchSource& b : t.sources)
-        if (is_transfer_source(a.name) && is_baseline(b.name)) {
+        if (compared(a.name, b.name)) {
           if (band < 0) {
             t.comparisons.push_back(compare_runs(a, b));
             continue;

@@ -23,14 +23,17 @@ namespace ptnet::har {
 const std::vector<BodyBand>& body_bands() {
   // Stature (cm) and BMI (kg/m^2). mid: the recorded population (adults
   // near the middle of both sexes' distributions); the deployment bands lie
-  // outside it in size, build or both; all covers every band.
+  // outside it in size, build or both (xshort-heavy and xtall-light: size
+  // and build against each other, the stature of xsmall / xlarge with the
+  // other's BMI); all covers every band.
   static const std::vector<BodyBand> bands = {
       {"mid", 160, 178, 20, 25},          {"small", 145, 157, 17, 19.5},
       {"large", 182, 198, 27, 32},        {"xsmall", 136, 146, 16, 18},
       {"xlarge", 192, 204, 30, 35},       {"short-light", 152, 159, 18.5, 20},
       {"tall-heavy", 179, 186, 25, 27.5}, {"light", 160, 178, 16.5, 19},
       {"heavy", 160, 178, 27, 33},        {"short", 145, 157, 20, 25},
-      {"tall", 182, 198, 20, 25},         {"all", 134, 206, 16, 35}};
+      {"tall", 182, 198, 20, 25},         {"xshort-heavy", 136, 146, 30, 35},
+      {"xtall-light", 192, 204, 16, 18},  {"all", 134, 206, 16, 35}};
   return bands;
 }
 
