@@ -29,9 +29,9 @@ constexpr int kDemoTrainThreads = 2;
 
 struct DemoCli {
   std::string out = "demo";
-  int performers = 5, takes = 2, threads = 0;
+  EmbeddedCorpus corpus;
+  int threads = 0;
   int train_threads = int(std::min(unsigned(kDemoTrainThreads), std::max(1u, std::thread::hardware_concurrency())));
-  double seconds = 8;
   std::uint64_t seed = 1;
   int epochs = TrainOptions::from_preset("fast").epochs;
   bool force = false, no_train = false;
@@ -82,15 +82,15 @@ void run(const DemoCli& c) {
   const auto bodies = sample_bodies(8, 8, 2, 2, c.seed);
   write_text_file(bodies_path, format_bodies_csv(bodies), c.force);
 
-  const std::vector<ClipSource> clips = embedded_clips(c.performers, c.takes, c.seconds, c.seed);
+  const std::vector<ClipSource> clips = embedded_clips(c.corpus.performers, c.corpus.takes, c.corpus.seconds, c.seed);
   if (!quiet) std::cerr << "demo: " << clips.size() << " procedural clips on " << bodies.size() << " bodies\n";
   SimulateDatasetOptions so;
   so.seed = c.seed;
   so.threads = c.threads;
   so.force = c.force;
   so.generator = std::string("ptnet ") + PTNET_VERSION + " demo";
-  so.config_json = "{\"performers\": " + std::to_string(c.performers) + ", \"takes\": " +
-                   std::to_string(c.takes) + ", \"seconds\": " + std::to_string(c.seconds) +
+  so.config_json = "{\"performers\": " + std::to_string(c.corpus.performers) + ", \"takes\": " +
+                   std::to_string(c.corpus.takes) + ", \"seconds\": " + std::to_string(c.corpus.seconds) +
                    ", \"seed\": " + std::to_string(c.seed) + "}";
   so.progress = [](const Progress& p) {
     if (p.what == "simulate") print(p);
@@ -119,9 +119,9 @@ void setup(CLI::App& app) {
       "demo", "The embedded default, no external data: procedural motions on sampled bodies, simulation,\n"
               "training (fast preset), evaluation (the paper's Table 2) and figures, all kept in --out");
   cmd->add_option("--out", c->out, "Output folder")->capture_default_str();
-  cmd->add_option("--performers", c->performers, "Procedural performers")->capture_default_str()->check(CLI::Range(1, 50));
-  cmd->add_option("--takes", c->takes, "Takes per performer and category")->capture_default_str()->check(CLI::Range(1, 5));
-  cmd->add_option("--seconds", c->seconds, "Seconds per clip")->capture_default_str()->check(in_range(2, 120));
+  cmd->add_option("--performers", c->corpus.performers, "Procedural performers")->capture_default_str()->check(CLI::Range(1, 50));
+  cmd->add_option("--takes", c->corpus.takes, "Takes per performer and category")->capture_default_str()->check(CLI::Range(1, 5));
+  cmd->add_option("--seconds", c->corpus.seconds, "Seconds per clip")->capture_default_str()->check(in_range(2, 120));
   cmd->add_option("--seed", c->seed, "Seed")->capture_default_str();
   cmd->add_option("--threads", c->threads, "Simulation threads (0: all cores)")->capture_default_str()->check(thread_count(true));
   cmd->add_option("--train-threads", c->train_threads, "Training threads (the results depend on it)")

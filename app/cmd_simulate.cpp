@@ -39,25 +39,13 @@ struct SimulateCli {
   std::vector<std::string> motions;
   std::string clips, bodies, out;
   bool embedded = false;
-  int performers = 5, takes = 2;
-  double seconds = 8;
-  double fps = 30;
-  std::uint64_t seed = 0;
-  int threads = 0;
-  std::string placement = "fixed";
+  EmbeddedCorpus corpus;
+  SimulateDatasetOptions dataset;  // fps, seed, threads, compression, force (sim: from `sim` below)
+  SimSettings sim;
   std::string units = "auto", up = "y";
-  int rows = SimOptions{}.mat.rows, cols = SimOptions{}.mat.cols;
-  double pitch_m = SimOptions{}.mat.pitch_m;
-  double compliance_mm = SimOptions{}.compliance_m * 1000;
-  int subsamples = SimOptions{}.subsamples;
-  double crosstalk = -1, saturation_kpa = -1, noise_kpa = -1, threshold_kpa = -1, quantum_kpa = -1;
-  bool ideal = false;
   bool no_floor = false;
-  int compression = kDefaultCompression;
-  bool force = false;
   std::string shard;  // "K/N"
 };
-
 
 void run(const SimulateCli& c) {
   const bool quiet = globals().quiet;
@@ -66,40 +54,25 @@ void run(const SimulateCli& c) {
   if (!c.embedded && c.motions.empty() && c.clips.empty())
     throw Error("simulate: give --motions (BVH files or folders), --clips, or --embedded");
 
-  SimulateDatasetOptions o;
-  o.fps = c.fps;
-  o.seed = c.seed;
-  o.threads = c.threads;
-  o.force = c.force;
+  SimulateDatasetOptions o = c.dataset;
   o.noise_floor = !c.no_floor;
-  o.compression = c.compression;
   o.generator = std::string("ptnet ") + PTNET_VERSION + " simulate";
   if (!c.shard.empty() && !parse_shard(c.shard, o.shard_index, o.shard_count))
     throw Error("--shard: expected K/N with 0 <= K < N (e.g. 0/4), found " + escaped(c.shard));
-  SimOptions& s = o.sim;
-  s.mat = MatSpec{c.rows, c.cols, c.pitch_m};
-  s.placement = parse_placement(c.placement);
-  s.compliance_m = c.compliance_mm / 1000.0;
-  s.subsamples = c.subsamples;
-  if (c.ideal) s.sensor = ideal_sensor();
-  if (c.crosstalk >= 0) s.sensor.crosstalk = c.crosstalk;
-  if (c.saturation_kpa >= 0) s.sensor.saturation_kpa = c.saturation_kpa;
-  if (c.noise_kpa >= 0) s.sensor.noise_sd_kpa = c.noise_kpa;
-  if (c.threshold_kpa >= 0) s.sensor.threshold_kpa = c.threshold_kpa;
-  if (c.quantum_kpa >= 0) s.sensor.quantum_kpa = c.quantum_kpa;
+  o.sim = sim_options(c.sim);
 
   // Inputs are all checked before any work: output path, bodies, clips.
-  check_output_path(c.out, c.force);
+  check_output_path(c.out, o.force);
   const std::vector<BodySpec> bodies = read_bodies_csv(c.bodies);
   if (bodies.empty()) throw Error::in(c.bodies, "no bodies (expected at least one row after the header)");
   std::vector<ClipSource> clips;
   if (c.embedded) {
-    clips = embedded_clips(c.performers, c.takes, c.seconds, c.seed, c.fps);
+    clips = embedded_clips(c.corpus.performers, c.corpus.takes, c.corpus.seconds, o.seed, o.fps);
   } else {
     MotionOptions mo;
     mo.units = parse_units(c.units);
     mo.up = parse_up_axis(c.up);
-    mo.fps = c.fps;
+    mo.fps = o.fps;
     clips = clips_from_files(c.motions, c.clips, mo);
   }
   if (!quiet)
@@ -128,48 +101,53 @@ void setup(CLI::App& app) {
   cmd->add_flag("--embedded", c->embedded, "Procedural motions (as ptnet demo) instead of BVH files");
   cmd->add_option("--bodies", c->bodies, "Bodies CSV (id,sex,height_cm,weight_kg[,role])")->required();
   cmd->add_option("-o,--out", c->out, "Output dataset (.h5)")->required();
-  cmd->add_option("--performers", c->performers, "--embedded: procedural performers")
+  cmd->add_option("--performers", c->corpus.performers, "--embedded: procedural performers")
       ->capture_default_str()->check(CLI::Range(1, 100));
-  cmd->add_option("--takes", c->takes, "--embedded: takes per performer and category")
+  cmd->add_option("--takes", c->corpus.takes, "--embedded: takes per performer and category")
       ->capture_default_str()->check(CLI::Range(1, 10));
-  cmd->add_option("--seconds", c->seconds, "--embedded: seconds per clip")
+  cmd->add_option("--seconds", c->corpus.seconds, "--embedded: seconds per clip")
       ->capture_default_str()->check(in_range(1, 600));
-  cmd->add_option("--fps", c->fps, "Frame rate of the dataset (motions are resampled)")
+  cmd->add_option("--fps", c->dataset.fps, "Frame rate of the dataset (motions are resampled)")
       ->capture_default_str()->check(in_range(1, 1000));
-  cmd->add_option("--seed", c->seed, "Seed of the sensor noise (and of --embedded motions)")->capture_default_str();
-  cmd->add_option("--threads", c->threads, "Threads (0: all cores)")->capture_default_str()->check(thread_count(true));
-  cmd->add_option("--placement", c->placement, "fixed: a physical mat; follow: the mat follows the body")
+  cmd->add_option("--seed", c->dataset.seed, "Seed of the sensor noise (and of --embedded motions)")->capture_default_str();
+  cmd->add_option("--threads", c->dataset.threads, "Threads (0: all cores)")->capture_default_str()->check(thread_count(true));
+  cmd->add_option("--placement", c->sim.placement, "fixed: a physical mat; follow: the mat follows the body")
       ->capture_default_str()->check(CLI::IsMember({"fixed", "follow"}));
   cmd->add_option("--units", c->units, "BVH units for files the clips CSV does not describe: auto|m|cm|mm|in|cmu")
       ->capture_default_str();
   cmd->add_option("--up", c->up, "BVH up axis for files the clips CSV does not describe: y|z")->capture_default_str();
-  cmd->add_option("--rows", c->rows, "Mat rows (along the walking axis)")->capture_default_str()->check(CLI::Range(1, 1000));
-  cmd->add_option("--cols", c->cols, "Mat columns")->capture_default_str()->check(CLI::Range(1, 1000));
-  cmd->add_option("--pitch", c->pitch_m, "Cell size (m)")->capture_default_str()->check(in_range(0.001, 0.2));
-  cmd->add_option("--compliance-mm", c->compliance_mm, "Contact band above the ground (mm)")
-      ->capture_default_str()->check(in_range(1, 50));
-  cmd->add_option("--subsamples", c->subsamples, "Depth samples per cell side")
-      ->capture_default_str()->check(CLI::Range(1, 16));
-  cmd->add_flag("--ideal-sensor", c->ideal, "No crosstalk, saturation, noise, threshold or quantisation");
-  cmd->add_option("--crosstalk", c->crosstalk, "Fraction leaking to each of 4 neighbours (default 0.02)")
-      ->check(in_range(0, 0.24));
-  cmd->add_option("--saturation-kpa", c->saturation_kpa, "Readings clip here (default 600)")
-      ->check(positive(1e6));
-  cmd->add_option("--noise-kpa", c->noise_kpa, "Read noise SD (default 0.2)")->check(in_range(0, 1e4));
-  cmd->add_option("--threshold-kpa", c->threshold_kpa, "Activation threshold (default 1)")
-      ->check(in_range(0, 1e6));
-  cmd->add_option("--quantum-kpa", c->quantum_kpa, "ADC step, 0: off (default 0.1)")->check(in_range(0, 1e6));
+  const SimSettingsRanges& r = kSimSettingsRanges;
+  const SensorModel sensor;
+  cmd->add_option("--rows", c->sim.rows, "Mat rows (along the walking axis)")->capture_default_str()->check(int_range(r.rows));
+  cmd->add_option("--cols", c->sim.cols, "Mat columns")->capture_default_str()->check(int_range(r.cols));
+  cmd->add_option("--pitch", c->sim.pitch_m, "Cell size (m)")->capture_default_str()->check(in_range(r.pitch_m));
+  cmd->add_option("--compliance-mm", c->sim.compliance_mm, "Contact band above the ground (mm)")
+      ->capture_default_str()->check(in_range(r.compliance_mm));
+  cmd->add_option("--subsamples", c->sim.subsamples, "Depth samples per cell side")
+      ->capture_default_str()->check(int_range(r.subsamples));
+  cmd->add_flag("--ideal-sensor", c->sim.ideal_sensor, "No crosstalk, saturation, noise, threshold or quantisation");
+  const auto sensor_default = [](double v) { return " (default " + number_text(v) + ")"; };
+  cmd->add_option("--crosstalk", c->sim.crosstalk, "Fraction leaking to each of 4 neighbours" + sensor_default(sensor.crosstalk))
+      ->check(in_range(r.crosstalk));
+  cmd->add_option("--saturation-kpa", c->sim.saturation_kpa, "Readings clip here" + sensor_default(sensor.saturation_kpa))
+      ->check(in_range(r.saturation_kpa));
+  cmd->add_option("--noise-kpa", c->sim.noise_kpa, "Read noise SD" + sensor_default(sensor.noise_sd_kpa))
+      ->check(in_range(r.noise_kpa));
+  cmd->add_option("--threshold-kpa", c->sim.threshold_kpa, "Activation threshold" + sensor_default(sensor.threshold_kpa))
+      ->check(in_range(r.threshold_kpa));
+  cmd->add_option("--quantum-kpa", c->sim.quantum_kpa, "ADC step, 0: off" + sensor_default(sensor.quantum_kpa))
+      ->check(in_range(r.quantum_kpa));
   cmd->add_flag("--no-floor", c->no_floor,
                 "Skip the second-seed copies of original-body sequences (/floor: the noise floor of evaluate)");
   cmd->add_option("--shard", c->shard,
                   "K/N: only the K-th (0-based) of N contiguous blocks of the clip x body list; "
                   "ptnet merge joins the N files (docs/distributed.md)");
-  cmd->add_option("--compression", c->compression,
+  cmd->add_option("--compression", c->dataset.compression,
                   "Deflate level of the sequences: 1 codes zero runs only (fastest, smallest on "
                   "sparse mats), 2-9 general deflate, 0 none (largest)")
       ->capture_default_str()
       ->check(CLI::Range(0, 9));
-  cmd->add_flag("-f,--force", c->force, "Overwrite the output if it exists");
+  cmd->add_flag("-f,--force", c->dataset.force, "Overwrite the output if it exists");
   cmd->callback([c] { run(*c); });
 }
 

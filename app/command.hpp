@@ -43,9 +43,8 @@ struct Registrar {
 // fall outside of, and messages with short numbers ("--lr: 0 is not in
 // (0, 10]").
 
-// A finite number in [lo, hi] (lo_open: (lo, hi]).
-inline CLI::Validator in_range(double lo, double hi, bool lo_open = false) {
-  const std::string range = std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + "]";
+// A finite number in the library's `range` (ptnet::Range, error.hpp).
+inline CLI::Validator in_range(const Range& range) {
   return CLI::Validator(
       [=](std::string& input) -> std::string {
         double v = 0;
@@ -56,12 +55,17 @@ inline CLI::Validator in_range(double lo, double hi, bool lo_open = false) {
           used = 0;
         }
         if (used == 0 || used != input.size()) return escaped(input, 30) + " is not a number";
-        if (!std::isfinite(v) || v < lo || v > hi || (lo_open && v == lo))
-          return escaped(input, 30) + " is not in " + range;
+        if (!range.contains(v)) return escaped(input, 30) + " is not in " + range.text();
         return std::string();
       },
-      "in " + range);
+      "in " + range.text());
 }
+// An integer in the library's `range` (its bounds are integers).
+inline CLI::Range int_range(const Range& range) {
+  return CLI::Range(static_cast<long long>(range.lo), static_cast<long long>(range.hi));
+}
+// A finite number in [lo, hi] (lo_open: (lo, hi]).
+inline CLI::Validator in_range(double lo, double hi, bool lo_open = false) { return in_range(Range{lo, hi, lo_open}); }
 // A number > 0 (and <= hi).
 inline CLI::Validator positive(double hi = 1e9) { return in_range(0, hi, /*lo_open=*/true); }
 // Threads: 1 .. max_threads() (0 too when it means "the default").

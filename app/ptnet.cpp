@@ -60,6 +60,7 @@ std::string flag_of(const std::string& command, std::string_view field) {
   static constexpr Renamed kRenamed[] = {
       {"", "dist_timeout_s", "--dist-timeout"},
       {"evaluate", "threshold_kpa", "--threshold"},
+      {"simulate", "pitch_m", "--pitch"},
       {"render", "sequences", "--sequence"},
   };
   for (const Renamed& r : kRenamed)

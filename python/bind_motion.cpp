@@ -32,43 +32,16 @@ std::vector<std::string> joint_names() {
   return names;
 }
 
-struct SimArgs {
-  std::uint64_t seed = 0;
-  std::string placement = "fixed";
-  bool retarget = true;
-  int rows = kMatRows, cols = kMatCols;
-  double pitch_m = kMatPitchM, compliance_mm = SimOptions{}.compliance_m * 1000;
-  int subsamples = SimOptions{}.subsamples;
-  bool ideal_sensor = false;
-  std::optional<double> crosstalk, saturation_kpa, noise_kpa, threshold_kpa, quantum_kpa;
-};
-
-// The options `ptnet simulate` builds from the same flags (app/cmd_simulate.cpp).
-SimOptions sim_options(const SimArgs& a) {
-  SimOptions s;
-  s.mat = MatSpec{a.rows, a.cols, a.pitch_m};
-  s.placement = parse_placement(a.placement);
-  s.compliance_m = a.compliance_mm / 1000.0;
-  s.subsamples = a.subsamples;
-  if (a.ideal_sensor) s.sensor = ideal_sensor();
-  if (a.crosstalk) s.sensor.crosstalk = *a.crosstalk;
-  if (a.saturation_kpa) s.sensor.saturation_kpa = *a.saturation_kpa;
-  if (a.noise_kpa) s.sensor.noise_sd_kpa = *a.noise_kpa;
-  if (a.threshold_kpa) s.sensor.threshold_kpa = *a.threshold_kpa;
-  if (a.quantum_kpa) s.sensor.quantum_kpa = *a.quantum_kpa;
-  s.seed = a.seed;
-  return s;
-}
-
 // As `ptnet simulate` does each sequence: the source motion retargeted onto
 // the body's height, placed as the source is placed, scaled (place_copy).
-py::array_t<float> simulate_motion(const Motion& motion, const BodySpec& spec, const SimArgs& args) {
-  const SimOptions options = sim_options(args);
+py::array_t<float> simulate_motion(const Motion& motion, const BodySpec& spec, const SimSettings& settings,
+                                   bool retarget_to_body) {
+  const SimOptions options = sim_options(settings);  // `ptnet simulate`'s mapping, defaults and ranges
   PressureSequence out;
   {
     py::gil_scoped_release release;
     const Body body(spec);  // validates
-    if (args.retarget) {
+    if (retarget_to_body) {
       const Motion copy = retarget(motion, spec.height_cm);
       out = simulate(copy, body, options, place_copy(motion, spec.height_cm, options));
     } else {
@@ -76,6 +49,80 @@ py::array_t<float> simulate_motion(const Motion& motion, const BodySpec& spec, c
     }
   }
   return pressure_array(std::move(out));
+}
+
+// ptnet.Body, the body functions and ptnet.simulate.
+void bind_bodies_and_simulate(py::module_& m) {
+  py::class_<BodySpec>(m, "Body", "A body: sex, height (cm), weight (kg); id and role as in a bodies CSV.")
+      .def(py::init([](const py::object& sex, double height_cm, double weight_kg, const std::string& id,
+                       const std::string& role) {
+             BodySpec b;
+             b.sex = parse_sex(py::str(sex));
+             b.height_cm = height_cm;
+             b.weight_kg = weight_kg;
+             b.id = id;
+             b.role = role;
+             validate(b);
+             return b;
+           }),
+           py::arg("sex"), py::arg("height_cm"), py::arg("weight_kg"), py::arg("id") = "body",
+           py::arg("role") = "retargeted")
+      .def_property_readonly("sex", [](const BodySpec& b) { return std::string(sex_name(b.sex)); })
+      .def_readonly("height_cm", &BodySpec::height_cm)
+      .def_readonly("weight_kg", &BodySpec::weight_kg)
+      .def_readonly("id", &BodySpec::id)
+      .def_readonly("role", &BodySpec::role)
+      .def("__repr__", [](const BodySpec& b) {
+        return "ptnet.Body('" + std::string(sex_name(b.sex)) + "', " + number_text(b.height_cm) + ", " +
+               number_text(b.weight_kg) + ", id='" + b.id + "', role='" + b.role + "')";
+      });
+
+  m.def(
+      "sample_bodies",
+      [](int males, int females, int originals_f, int originals_m, std::uint64_t seed, const std::string& sampling) {
+        return sample_bodies(males, females, originals_f, originals_m, seed, parse_body_sampling(sampling));
+      },
+      py::arg("males") = 8, py::arg("females") = 8, py::arg("originals_f") = 0, py::arg("originals_m") = 0,
+      py::arg("seed") = 1, py::arg("sampling") = "paper",
+      "Bodies drawn as in the paper (ptnet bodies): ids f01.., m01.. (retargeted), of01.., om01.. (original); "
+      "sampling 'paper' (Gaussian draws) or 'cover' (a Latin hypercube over mean +- 2.5 sd).");
+  m.def("read_bodies_csv", &read_bodies_csv, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
+  m.def("sequence_seed", &sequence_seed, py::arg("seed"), py::arg("name"),
+        "The sensor seed `ptnet simulate --seed SEED` gives sequence NAME (<motion_id>__<body_id>).");
+
+  m.def("simulate",
+        [](const Motion& motion, const py::object& body, std::uint64_t seed, const std::string& placement,
+           bool retarget, int rows, int cols, double pitch_m, double compliance_mm, int subsamples, bool ideal,
+           std::optional<double> crosstalk, std::optional<double> saturation_kpa, std::optional<double> noise_kpa,
+           std::optional<double> threshold_kpa, std::optional<double> quantum_kpa) {
+          const BodySpec spec = body_argument(body, "body");
+          SimSettings a;
+          a.seed = seed;
+          a.placement = placement;
+          a.rows = rows;
+          a.cols = cols;
+          a.pitch_m = pitch_m;
+          a.compliance_mm = compliance_mm;
+          a.subsamples = subsamples;
+          a.ideal_sensor = ideal;
+          a.crosstalk = crosstalk;
+          a.saturation_kpa = saturation_kpa;
+          a.noise_kpa = noise_kpa;
+          a.threshold_kpa = threshold_kpa;
+          a.quantum_kpa = quantum_kpa;
+          return simulate_motion(motion, spec, a, retarget);
+        },
+        py::arg("motion"), py::arg("body"), py::kw_only(), py::arg("seed") = SimSettings{}.seed,
+        py::arg("placement") = SimSettings{}.placement, py::arg("retarget") = true, py::arg("rows") = SimSettings{}.rows,
+        py::arg("cols") = SimSettings{}.cols, py::arg("pitch_m") = SimSettings{}.pitch_m,
+        py::arg("compliance_mm") = SimSettings{}.compliance_mm, py::arg("subsamples") = SimSettings{}.subsamples,
+        py::arg("ideal_sensor") = SimSettings{}.ideal_sensor, py::arg("crosstalk") = py::none(), py::arg("saturation_kpa") = py::none(),
+        py::arg("noise_kpa") = py::none(), py::arg("threshold_kpa") = py::none(),
+        py::arg("quantum_kpa") = py::none(),
+        "The motion on the body, pressed onto the mat: float32 [T, rows, cols] kPa. With retarget (the default) "
+        "the motion is the source clip, retargeted onto the body's height and placed as `ptnet simulate` places "
+        "it, so simulate(m, body, seed=sequence_seed(S, name)) equals the CLI's sequence NAME with --seed S. "
+        "Options and sensor defaults: docs/simulate.md.");
 }
 
 }  // namespace
@@ -139,64 +186,7 @@ void bind_motion(py::module_& m) {
         py::arg("seed") = 0, py::arg("fps") = kFps, py::arg("height_cm") = 0.0,
         "A procedural clip (walking|rom|freestyle|acting), named p<P>_<category>_t<T> as in ptnet's datasets; "
         "height_cm 0: the performer's own.");
-
-  py::class_<BodySpec>(m, "Body", "A body: sex, height (cm), weight (kg); id and role as in a bodies CSV.")
-      .def(py::init([](const py::object& sex, double height_cm, double weight_kg, const std::string& id,
-                       const std::string& role) {
-             BodySpec b;
-             b.sex = parse_sex(py::str(sex));
-             b.height_cm = height_cm;
-             b.weight_kg = weight_kg;
-             b.id = id;
-             b.role = role;
-             validate(b);
-             return b;
-           }),
-           py::arg("sex"), py::arg("height_cm"), py::arg("weight_kg"), py::arg("id") = "body",
-           py::arg("role") = "retargeted")
-      .def_property_readonly("sex", [](const BodySpec& b) { return std::string(sex_name(b.sex)); })
-      .def_readonly("height_cm", &BodySpec::height_cm)
-      .def_readonly("weight_kg", &BodySpec::weight_kg)
-      .def_readonly("id", &BodySpec::id)
-      .def_readonly("role", &BodySpec::role)
-      .def("__repr__", [](const BodySpec& b) {
-        return "ptnet.Body('" + std::string(sex_name(b.sex)) + "', " + number_text(b.height_cm) + ", " +
-               number_text(b.weight_kg) + ", id='" + b.id + "', role='" + b.role + "')";
-      });
-
-  m.def(
-      "sample_bodies",
-      [](int males, int females, int originals_f, int originals_m, std::uint64_t seed, const std::string& sampling) {
-        return sample_bodies(males, females, originals_f, originals_m, seed, parse_body_sampling(sampling));
-      },
-      py::arg("males") = 8, py::arg("females") = 8, py::arg("originals_f") = 0, py::arg("originals_m") = 0,
-      py::arg("seed") = 1, py::arg("sampling") = "paper",
-      "Bodies drawn as in the paper (ptnet bodies): ids f01.., m01.. (retargeted), of01.., om01.. (original); "
-      "sampling 'paper' (Gaussian draws) or 'cover' (a Latin hypercube over mean +- 2.5 sd).");
-  m.def("read_bodies_csv", &read_bodies_csv, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
-  m.def("sequence_seed", &sequence_seed, py::arg("seed"), py::arg("name"),
-        "The sensor seed `ptnet simulate --seed SEED` gives sequence NAME (<motion_id>__<body_id>).");
-
-  m.def("simulate",
-        [](const Motion& motion, const py::object& body, std::uint64_t seed, const std::string& placement,
-           bool retarget, int rows, int cols, double pitch_m, double compliance_mm, int subsamples, bool ideal,
-           std::optional<double> crosstalk, std::optional<double> saturation_kpa, std::optional<double> noise_kpa,
-           std::optional<double> threshold_kpa, std::optional<double> quantum_kpa) {
-          const BodySpec spec = body_argument(body, "body");
-          SimArgs a{seed,      placement, retarget,       rows,      cols,          pitch_m,    compliance_mm,
-                    subsamples, ideal,    crosstalk, saturation_kpa, noise_kpa, threshold_kpa, quantum_kpa};
-          return simulate_motion(motion, spec, a);
-        },
-        py::arg("motion"), py::arg("body"), py::kw_only(), py::arg("seed") = 0, py::arg("placement") = "fixed",
-        py::arg("retarget") = true, py::arg("rows") = kMatRows, py::arg("cols") = kMatCols,
-        py::arg("pitch_m") = kMatPitchM, py::arg("compliance_mm") = SimOptions{}.compliance_m * 1000, py::arg("subsamples") = SimOptions{}.subsamples,
-        py::arg("ideal_sensor") = false, py::arg("crosstalk") = py::none(), py::arg("saturation_kpa") = py::none(),
-        py::arg("noise_kpa") = py::none(), py::arg("threshold_kpa") = py::none(),
-        py::arg("quantum_kpa") = py::none(),
-        "The motion on the body, pressed onto the mat: float32 [T, rows, cols] kPa. With retarget (the default) "
-        "the motion is the source clip, retargeted onto the body's height and placed as `ptnet simulate` places "
-        "it, so simulate(m, body, seed=sequence_seed(S, name)) equals the CLI's sequence NAME with --seed S. "
-        "Options and sensor defaults: docs/simulate.md.");
+  bind_bodies_and_simulate(m);
 }
 
 }  // namespace ptnet::python

@@ -19,6 +19,7 @@
 // "--micro-batch": app/ptnet.cpp).
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -141,6 +142,25 @@ inline std::string number_text(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
+}
+
+// The values an option accepts: finite numbers in [lo, hi] ((lo, hi] with
+// lo_open). Declared once beside the option (SimSettings::kRanges,
+// TrainOptions's ranges) and read by the library's check (check_range) and by
+// a front end's own validator (the CLI's in_range), so the two never differ.
+struct Range {
+  double lo = 0, hi = 0;
+  bool lo_open = false;
+  bool contains(double v) const { return std::isfinite(v) && v >= lo && v <= hi && !(lo_open && v == lo); }
+  // "[0, 0.24]", "(0, 10]"
+  std::string text() const { return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + "]"; }
+};
+
+// Throws Error "FIELD: V is not in [lo, hi]" (the field as field_text) when
+// `value` is outside `range`.
+inline void check_range(std::string_view field, double value, const Range& range) {
+  if (!range.contains(value))
+    throw Error(field_text(field) + ": " + number_text(value) + " is not in " + range.text());
 }
 
 }  // namespace ptnet

@@ -60,10 +60,12 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "ptnet/body.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/pressure.hpp"
 #include "ptnet/progress.hpp"
@@ -100,6 +102,34 @@ struct SimOptions {
 
 // A noiseless sensor (the physics only): for tests and references.
 SensorModel ideal_sensor();
+
+// The simulator's settings as its front ends take them (`ptnet simulate`'s
+// flags, Python's simulate() arguments): one mapping to SimOptions
+// (sim_options) with one set of defaults and ranges.
+struct SimSettings {
+  int rows = kMatRows, cols = kMatCols;  // mat cells (H x W)
+  double pitch_m = kMatPitchM;           // cell size (m)
+  std::string placement = "fixed";       // fixed | follow (parse_placement)
+  double compliance_mm;                  // contact band above the ground (mm): SimOptions::compliance_m
+  int subsamples;                        // depth samples per cell side: SimOptions::subsamples
+  bool ideal_sensor = false;             // ideal_sensor() instead of the default SensorModel
+  // Overrides of the sensor model's values (unset: the model's, default or ideal).
+  std::optional<double> crosstalk, saturation_kpa, noise_kpa, threshold_kpa, quantum_kpa;
+  std::uint64_t seed = 0;                // SimOptions::seed
+  SimSettings();
+};
+// The values each SimSettings field accepts: sim_options() checks them,
+// `ptnet simulate`'s validators show them.
+struct SimSettingsRanges {
+  Range rows{1, 1000}, cols{1, 1000}, pitch_m{0.001, 0.2}, compliance_mm{1, 50}, subsamples{1, 16};
+  Range crosstalk{0, 0.24}, saturation_kpa{0, 1e6, true}, noise_kpa{0, 1e4}, threshold_kpa{0, 1e6},
+      quantum_kpa{0, 1e6};
+};
+inline constexpr SimSettingsRanges kSimSettingsRanges{};
+
+// The SimOptions of `settings`; throws Error naming the first field out of
+// its range ("crosstalk: 0.3 is not in [0, 0.24]") or an unknown placement.
+SimOptions sim_options(const SimSettings& settings);
 
 // Where the mat lies under a motion: world -> mat coordinates in frame t,
 // X = axis . (p - centre[t]) (towards row 0), Y = left . (p - centre[t])

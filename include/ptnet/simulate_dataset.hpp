@@ -96,7 +96,15 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
 // `seconds` long at `fps`, motion_id "p<P>_<category>_t<take>", performer
 // "P<P>", source "procedural:<motion_id>".
 std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds, std::uint64_t seed,
-                                       double fps = 30);
+                                       double fps = kFps);
+
+// The size of the embedded corpus, `ptnet demo`'s and `ptnet simulate
+// --embedded`'s default (embedded_clips).
+struct EmbeddedCorpus {
+  int performers = 5;   // procedural performers
+  int takes = 2;        // takes per performer and category
+  double seconds = 8;   // seconds per clip
+};
 
 // Loads (BVH) or generates (procedural, at the performer's own height) one
 // clip at `fps`, cut to its frame span. Throws Error naming the file (or a
