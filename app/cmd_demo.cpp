@@ -61,7 +61,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
   char line[160];
   std::snprintf(line, sizeof line, "model: %s (%d epochs, best %d, %.0f s)", model_dir.c_str(), t.epochs_run,
                 t.best_epoch, t.seconds);
-  std::cout << "\n" << line << "\n\n" << e.table << "\n" << kPaperTable2Line << "\n";
+  std::cout << "\n" << line << "\n\n" << e.table << "\n" << paper_table2_line() << "\n";
   for (const auto& p : e.written) std::cout << "wrote " << p << "\n";
   std::cout << "open " << e.page << " in a browser: the report on one page\n";
 }

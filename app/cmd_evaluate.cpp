@@ -15,39 +15,23 @@
 namespace ptnet::cli {
 namespace {
 
-struct EvaluateCli {
-  std::string model, data, out = "report";
-  double threshold_kpa = kContactKpa;
-  int stride = 5, threads = 0;
-  bool force = false, raw = false;
-};
-
-void run(const EvaluateCli& c) {
-  EvaluationRun r;
-  r.model_dir = c.model;
-  r.data_path = c.data;
-  r.out_dir = c.out;
-  r.threshold_kpa = c.threshold_kpa;
-  r.stride = c.stride;
-  r.threads = c.threads;
-  r.raw = c.raw;
-  r.force = c.force;
+void run(EvaluationRun r) {
   r.progress = print;
   const EvaluationResult result = run_evaluation(r);
-  std::cout << result.table << "\n" << kPaperTable2Line << "\n";
+  std::cout << result.table << "\n" << paper_table2_line() << "\n";
   for (const auto& p : result.written) std::cout << "wrote " << p << "\n";
   std::cout << "open " << result.page << " in a browser: the report on one page\n";
 }
 
 void setup(CLI::App& app) {
-  auto c = std::make_shared<EvaluateCli>();
+  auto c = std::make_shared<EvaluationRun>();
   auto* cmd = app.add_subcommand("evaluate", "Table 2: RMSE and binary R^2 of a model on original bodies");
-  cmd->add_option("--model", c->model, "Model directory (ptnet train --out)")->required();
-  cmd->add_option("--data", c->data, "Dataset (.h5) with at least two 'original' bodies")->required();
+  cmd->add_option("--model", c->model_dir, "Model directory (ptnet train --out)")->required();
+  cmd->add_option("--data", c->data_path, "Dataset (.h5) with at least two 'original' bodies")->required();
   cmd->add_option("--threshold", c->threshold_kpa, "Binarisation threshold for binary R^2 and IoU (kPa)")
       ->capture_default_str()
       ->check(positive(1e6));
-  cmd->add_option("--out", c->out, "Report folder")->capture_default_str();
+  cmd->add_option("--out", c->out_dir, "Report folder")->capture_default_str();
   cmd->add_option("--stride", c->stride, "Frames between transfer windows (averaged)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));

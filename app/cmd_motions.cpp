@@ -34,7 +34,7 @@ struct MotionsCli {
   std::string out_dir;
   // Both.
   double seconds = 10;
-  double fps = 30;
+  double fps = kFps;
   std::uint64_t seed = 0;
   double height_cm = 0;
   bool force = false;

@@ -183,12 +183,13 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
 
 // ------------------------------------------------- the whole evaluate step
 
+// The paper's averages (kPaperTable2, paper.hpp) as one line under a table:
+// "Paper (Table 2): seen RMSE 8.88, binary R^2 0.79; unseen RMSE 12.82, ...".
+std::string paper_table2_line();
+
 // `ptnet evaluate` as a function (the CLI and `ptnet demo` call it): the
 // trained model in model_dir (ptnet::Transfer) on every test pair of the
 // dataset, the table, and the report in out_dir.
-inline constexpr const char* kPaperTable2Line =
-    "Paper (Table 2): seen RMSE 8.88, binary R^2 0.79; unseen RMSE 12.82, binary R^2 0.70";
-
 struct EvaluationRun {
   std::string model_dir, data_path, out_dir = "report";
   double threshold_kpa = kContactKpa;  // binarisation for binary R^2 and IoU

@@ -70,10 +70,10 @@ const std::vector<std::string>& feature_names();
 // a coarse contact-occupancy grid centred on the window's mean centre of
 // pressure (so the position on the mat does not matter).
 std::vector<double> window_feature_vector(const float* window, int frames, const MatSpec& mat,
-                                          double fps = 30);
+                                          double fps = kFps);
 
 // All windows of a batch -> [N, F].
-Eigen::MatrixXd window_features(const WindowBatch& windows, double fps = 30);
+Eigen::MatrixXd window_features(const WindowBatch& windows, double fps = kFps);
 
 // Divides the body-scaled features (force_mean_n, area_*, peak_*) of each
 // window by the median of that feature over its subject's windows, so that

@@ -70,8 +70,8 @@ struct ModelConfig {
   Arch arch = Arch::faithful;
   Align align = Align::none;
   int window = kWindowFrames;                  // frames per window = input/output channels
-  int rows = 80;                           // mat rows (H)
-  int cols = 28;                           // mat cols (W)
+  int rows = kMatRows;                     // mat rows (H)
+  int cols = kMatCols;                     // mat cols (W)
   std::array<int, 3> channels = kPaperChannels;  // conv widths of encoder blocks 1-3
   int hidden = kHidden;                    // FC after the flattened conv features
   int latent = kLatent;                    // FC after concatenating the source attributes
@@ -132,7 +132,7 @@ struct ModelDir {
   ModelConfig model;
   Normalisation norm;
   MatSpec mat;
-  double fps = 30;
+  double fps = kFps;
   nlohmann::json data;     // training data: path, digest, counts
   nlohmann::json options;  // training options
   nlohmann::json metrics;  // final metrics

@@ -17,6 +17,7 @@ inline constexpr int kMatRows = 80;          // H: cells along the mat's long (w
 inline constexpr int kMatCols = 28;          // W: cells across
 inline constexpr double kMatPitchM = 0.02;   // cell size (m): a 1.60 m x 0.56 m mat
 inline constexpr double kContactKpa = 0.5;   // a cell above this is in contact (binary R^2)
+inline constexpr double kValFraction = 0.1;  // validation share of each motion's windows (the 9:1 split)
 
 // Body attributes the tool accepts at its interfaces (CLI, CSV, datasets, models).
 inline constexpr double kMinHeightCm = 100, kMaxHeightCm = 230;
@@ -30,5 +31,17 @@ struct BodyDistribution {
 };
 inline constexpr BodyDistribution kPaperFemale{165, 15, 65, 10};
 inline constexpr BodyDistribution kPaperMale{175, 15, 75, 10};
+
+// The paper's Table 2: PressureTransferNet on its test bodies, RMSE (kPa) and
+// binary R^2 per motion category and on average, seen and unseen motions.
+struct PaperTable2Row {
+  const char* category;  // walking | rom | freestyle | acting | average
+  double seen_rmse_kpa, seen_binary_r2;
+  double unseen_rmse_kpa, unseen_binary_r2;
+};
+inline constexpr PaperTable2Row kPaperTable2[] = {
+    {"walking", 8.72, 0.81, 12.46, 0.71},   {"rom", 9.21, 0.78, 12.89, 0.69},
+    {"freestyle", 8.93, 0.80, 13.22, 0.70}, {"acting", 9.67, 0.76, 12.73, 0.69},
+    {"average", 8.88, 0.79, 12.82, 0.70}};
 
 }  // namespace ptnet

@@ -53,7 +53,7 @@ struct FootTrack {
 
 struct Clip {
   double h = 1.7;
-  double fps = 30;
+  double fps = kFps;
   int frames = 0;
   std::vector<rig::Controls> controls;  // [F], pelvis z nominal until settled
   std::vector<double> nominal_z;        // [F], m

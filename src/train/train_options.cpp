@@ -95,7 +95,7 @@ json options_json(const TrainOptions& o) {
               {"samples_per_epoch", o.samples_per_epoch}, {"val_samples", o.val_samples},
               {"loss", loss_name(o.loss)}, {"force_weight", o.force_weight},
               {"contact_weight", o.contact_weight},
-              {"init", o.init},            {"val_fraction", 0.1},
+              {"init", o.init},            {"val_fraction", kValFraction},
               {"fit_contact_threshold", o.fit_contact_threshold},
               {"identity_pairs", o.identity_pairs}, {"crop_rows", o.crop_rows}, {"mirror", o.mirror},
               {"world_size", o.world_size}};

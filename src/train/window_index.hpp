@@ -25,7 +25,7 @@ namespace ptnet {
 struct WindowOptions {
   int window = kWindowFrames;         // frames per window
   int stride = 1;                 // frames between window starts
-  double val_fraction = 0.1;      // share of each motion's window starts held out
+  double val_fraction = kValFraction;  // share of each motion's window starts held out
   std::uint64_t seed = 1;         // places the validation blocks
   bool identity_pairs = false;    // a motion on one body only gives the pair (a, a): fine-tuning
                                   // on real recordings (one subject per recording)
