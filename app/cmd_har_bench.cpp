@@ -49,7 +49,7 @@ void run(HarBenchCli& c) {
   if (fs::exists(c.out, ec) && !fs::is_directory(c.out, ec)) throw ptnet::Error::in(c.out, "exists and is not a folder");
   const auto path = [&](const std::string& name) { return (fs::path(c.out) / name).string(); };
   for (const std::string& p : {path("results.json"), path("index.html"), path("f1.svg")})
-    if (fs::exists(p, ec) && !c.force) throw ptnet::Error::in(p, "exists; pass --force to overwrite");
+    ptnet::check_overwrite(p, c.force);
 
   std::optional<ptnet::Transfer> transfer;
   ptnet::har::TransferFn fn;

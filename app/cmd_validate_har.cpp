@@ -81,7 +81,7 @@ void run(const ValidateHarCli& o) {
   const std::string png_path = (fs::path(o.out) / "confusion.png").string();
   const std::string page_path = (fs::path(o.out) / "index.html").string();
   for (const auto& p : {json_path, png_path, page_path})
-    if (fs::exists(p, ec) && !o.force) throw ptnet::Error::in(p, "exists; pass --force to overwrite");
+    ptnet::check_overwrite(p, o.force);
 
   ptnet::Dataset real = ptnet::Dataset::open(o.real);
   ptnet::har::check_subjects(real, h);  // before loading anything else

@@ -49,6 +49,11 @@ void check_regular_input(const std::string& path);
 // alone does not (train --resume rewrites the config.json it read).
 void note_input(const std::string& path);
 
+// The one overwrite rule of every output: throws Error (kind exists,
+// "PATH: exists; pass force to overwrite") if `path` exists and `force` is
+// false.
+void check_overwrite(const std::string& path, bool force);
+
 // Throws Error if `path` exists and `force` is false, if it exists and is not
 // a regular file, if it is an input of this run, or if its folder is missing
 // or not writable.

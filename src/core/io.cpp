@@ -216,10 +216,15 @@ Error exists_error(const std::string& path) {
 }
 }  // namespace
 
+void check_overwrite(const std::string& path, bool force) {
+  std::error_code ec;
+  if (!force && fs::exists(path, ec)) throw exists_error(path);
+}
+
 void check_output_path(const std::string& path, bool force) {
   check_regular(path);
+  check_overwrite(path, force);
   std::error_code ec;
-  if (fs::exists(path, ec) && !force) throw exists_error(path);
   check_not_input(path);
   fs::path parent = fs::path(path).parent_path();
   if (parent.empty()) parent = ".";
