@@ -112,7 +112,7 @@ void run(const ValidateHarCli& o) {
     std::ostringstream s;
     s << "model mat " << mm.rows << "x" << mm.cols << " (" << mm.pitch_m << " m) differs from "
       << o.real << "'s " << dm.rows << "x" << dm.cols << " (" << dm.pitch_m << " m)";
-    throw ptnet::Error::in((fs::path(o.model) / "config.json").string(), s.str());
+    throw ptnet::Error::in(ptnet::ModelFiles(o.model).config(), s.str());
   }
   ptnet::TransferOptions to;
   to.stride = o.transfer_stride;

@@ -39,12 +39,14 @@ from torch import nn
 
 ATTRIBUTES = 3  # sex, z(height), z(weight)
 POOL_LEVELS = 3  # encoder blocks, each halving rows and cols (rounding up)
+CONFIG_FILE = "config.json"  # a model folder's files (ModelFiles, include/ptnet/model_config.hpp)
+WEIGHTS_FILE = "model.pt"
 
 
 def read_config(path):
     """config.json of a ptnet model folder (the file or its folder) as a dict."""
     if os.path.isdir(path):
-        path = os.path.join(path, "config.json")
+        path = os.path.join(path, CONFIG_FILE)
     with open(path, encoding="utf-8") as f:
         cfg = json.load(f)
     if cfg.get("format") != "ptnet-model":
@@ -224,10 +226,10 @@ def load(model_dir, weights):
     check_state_dict(sd, net, path)
     net.load_state_dict(sd)
     if from_file:
-        recorded = cfg.get("integrity", {}).get("model.pt", "")
+        recorded = cfg.get("integrity", {}).get(WEIGHTS_FILE, "")
         found = weights_digest(net)
         if recorded and found != recorded:  # older folders record none (as ptnet does)
-            config_path = os.path.join(model_dir, "config.json") if os.path.isdir(model_dir) else os.fspath(model_dir)
+            config_path = os.path.join(model_dir, CONFIG_FILE) if os.path.isdir(model_dir) else os.fspath(model_dir)
             raise ValueError(f"{path}: weights do not match the digest in {config_path} ({found}, recorded "
                              f"{recorded}): not exported from this model folder, or changed since")
     return net.eval(), cfg

@@ -21,8 +21,10 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "ptnet/body_spec.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/paper.hpp"
 #include "ptnet/pressure.hpp"
 
@@ -124,6 +126,24 @@ struct Normalisation {
   double min_reading_kpa = 0;
   // {sex (0 female, 1 male), z-scored height, z-scored weight}
   std::array<float, 3> attributes(const BodySpec& body) const;
+};
+
+// The model folder's file names, written once (the folder is described at
+// the top of this header).
+struct ModelFiles {
+  static constexpr const char* kConfig = "config.json";        // architecture, normalisation, ...
+  static constexpr const char* kWeights = "model.pt";          // the best weights
+  static constexpr const char* kCheckpoint = "checkpoint.pt";  // the last epoch (resume)
+  static constexpr const char* kHistory = "history.csv";       // one row per epoch
+  static constexpr const char* kAll[] = {kConfig, kWeights, kCheckpoint, kHistory};
+
+  std::string dir;  // the folder
+  explicit ModelFiles(std::string folder) : dir(std::move(folder)) {}
+  std::string path(const char* name) const;  // dir/name
+  std::string config() const { return path(kConfig); }
+  std::string weights() const { return path(kWeights); }
+  std::string checkpoint() const { return path(kCheckpoint); }
+  std::string history() const { return path(kHistory); }
 };
 
 // Everything config.json holds.

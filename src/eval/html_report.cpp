@@ -325,11 +325,11 @@ std::vector<std::string> write_report_html(const std::vector<EvalRow>& rows,
     << worst_html(rows, worst);
 
   b << "<h2>Model</h2>\n";
-  const fs::path model(options.model_dir);
   if (options.model_dir.empty()) {
     b << "<p>No model folder given.</p>\n";
   } else {
-    const fs::path history = model / "history.csv";
+    const ModelFiles files(options.model_dir);
+    const fs::path history = files.history();
     if (fs::exists(history)) {
       write_text_file(path("training_curve.svg"), svg_line_chart(training_chart(history.string())),
                       options.force);
@@ -339,9 +339,9 @@ std::vector<std::string> write_report_html(const std::vector<EvalRow>& rows,
     } else {
       b << "<p>No training history (" << html_escape(history.string()) << " is missing).</p>\n";
     }
-    const fs::path config = model / "config.json";
+    const fs::path config = files.config();
     if (fs::exists(config))
-      b << "<details open><summary>config.json (architecture, normalisation, training data and "
+      b << "<details open><summary>" << ModelFiles::kConfig << " (architecture, normalisation, training data and "
            "options, final "
            "metrics)</summary><pre>"
         << html_escape(read_text_file(config.string())) << "</pre></details>\n";

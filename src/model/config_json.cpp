@@ -125,8 +125,8 @@ ModelDir read_model_dir(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(dir, ec)) throw Error::in(dir, "no such model folder", ErrorKind::not_found);
-  if (!fs::is_directory(dir, ec)) throw Error::in(dir, "is not a folder (expected a model folder with config.json)");
-  const std::string path = (fs::path(dir) / "config.json").string();
+  if (!fs::is_directory(dir, ec)) throw Error::in(dir, std::string("is not a folder (expected a model folder with ") + ModelFiles::kConfig + ")");
+  const std::string path = ModelFiles(dir).config();
   if (!fs::exists(path, ec))
     throw Error::in(path, "no such file (is " + dir + " a ptnet model folder?)",
                     ErrorKind::not_found);

@@ -258,7 +258,7 @@ void read_weights(PressureTransferNet& net, torch::serialize::InputArchive& arch
     if (src.sizes() != dst.sizes()) {
       std::ostringstream s;
       s << "tensor \"" << name << "\" has shape " << src.sizes() << ", the model expects "
-        << dst.sizes() << " (weights and config.json disagree)";
+        << dst.sizes() << " (weights and " << ModelFiles::kConfig << " disagree)";
       throw Error::in(path, s.str());
     }
     dst.copy_(src);

@@ -4,6 +4,7 @@
 // config_json.cpp. No Torch here.
 #include "ptnet/model_config.hpp"
 
+#include <filesystem>
 #include <string>
 
 #include "ptnet/error.hpp"
@@ -53,6 +54,8 @@ void validate(const ModelConfig& c) {
   if (c.contact && c.arch != Arch::frame)
     throw Error(std::string("model: a contact head needs the frame architecture, found ") + arch_name(c.arch));
 }
+
+std::string ModelFiles::path(const char* name) const { return (std::filesystem::path(dir) / name).string(); }
 
 std::array<int, 2> pooled_size(const ModelConfig& c, int level) {
   std::array<int, 2> s{c.rows, c.cols};

@@ -107,15 +107,15 @@ void check_weight_values(const PressureTransferNet& net, const std::string& path
 }  // namespace
 
 void export_state_dict(const std::string& model_dir, const std::string& out_path, bool force) {
-  const std::string config_path = (fs::path(model_dir) / "config.json").string();
-  const std::string weights_path = (fs::path(model_dir) / "model.pt").string();
+  const ModelFiles files(model_dir);
+  const std::string config_path = files.config(), weights_path = files.weights();
   note_input(config_path);
   note_input(weights_path);
   check_output_path(out_path, force);
   const ModelDir dir = read_model_dir(model_dir);
   PressureTransferNet net(dir.model);
   load_weights(net, weights_path);
-  check_weights_digest(*net, recorded_digest(dir, "model.pt"), weights_path, config_path);
+  check_weights_digest(*net, recorded_digest(dir, ModelFiles::kWeights), weights_path, config_path);
   c10::Dict<std::string, torch::Tensor> dict;
   for (const auto& [name, tensor] : named_tensors(net)) dict.insert(name, tensor.detach().cpu().contiguous());
   const std::vector<char> bytes = save_plain_dict(dict);
@@ -136,13 +136,13 @@ void import_state_dict(const std::string& weights_path, const std::string& confi
       auto it = dict.find(c10::IValue(name));
       if (it == dict.end())
         throw Error::in(weights_path, "missing tensor \"" + name + "\" (saved from another architecture than " +
-                                          arch_name(dir.model.arch) + " in " + config_dir + "/config.json?)");
+                                          arch_name(dir.model.arch) + " in " + ModelFiles(config_dir).config() + "?)");
       if (!it->value().isTensor()) throw Error::in(weights_path, "\"" + name + "\" is not a tensor");
       const torch::Tensor src = it->value().toTensor();
       if (src.sizes() != dst.sizes())
         throw Error::in(weights_path, "tensor \"" + name + "\" has shape " + shape_text(src.sizes()) +
                                           ", the model expects " + shape_text(dst.sizes()) + " (weights and " +
-                                          config_dir + "/config.json disagree)");
+                                          ModelFiles(config_dir).config() + " disagree)");
       dst.copy_(src.to(dst.dtype()));
     }
     for (const auto& entry : dict) {
@@ -155,14 +155,15 @@ void import_state_dict(const std::string& weights_path, const std::string& confi
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw Error::in(out_dir, "cannot create folder: " + ec.message(), ErrorKind::io);
-  for (const char* stale : {"checkpoint.pt", "history.csv"}) fs::remove(fs::path(out_dir) / stale, ec);
+  const ModelFiles out(out_dir);
+  for (const char* stale : {ModelFiles::kCheckpoint, ModelFiles::kHistory}) fs::remove(out.path(stale), ec);
   dir.path = out_dir;
   dir.integrity = nlohmann::json::object();
-  record_digest(dir, "model.pt", weights_digest(*net));
+  record_digest(dir, ModelFiles::kWeights, weights_digest(*net));
   dir.metrics = nlohmann::json{{"imported_from", weights_path}};
   CommitGroup group;
-  save_weights(net, (fs::path(out_dir) / "model.pt").string());
-  write_text_file((fs::path(out_dir) / "config.json").string(), to_json(dir).dump(2) + "\n", /*force=*/true);
+  save_weights(net, out.weights());
+  write_text_file(out.config(), to_json(dir).dump(2) + "\n", /*force=*/true);
   group.commit();
 }
 

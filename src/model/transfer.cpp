@@ -18,9 +18,8 @@ std::unique_ptr<LoadedModel> load_model(const std::string& model_dir, const std:
   if (threads < 0 || threads > max_threads())
     throw Error("transfer: threads must be in 0-" + std::to_string(max_threads()) + ", found " +
                 std::to_string(threads));
-  namespace fs = std::filesystem;
-  const std::string config_path = (fs::path(model_dir) / "config.json").string();
-  const std::string weights_path = (fs::path(model_dir) / "model.pt").string();
+  const ModelFiles files(model_dir);
+  const std::string config_path = files.config(), weights_path = files.weights();
   note_input(config_path);  // no output of this run may replace the model
   note_input(weights_path);
   auto m = std::make_unique<LoadedModel>();
@@ -31,7 +30,7 @@ std::unique_ptr<LoadedModel> load_model(const std::string& model_dir, const std:
                "the model (" + std::to_string(parameter_count(m->dir.model)) + " parameters)");
   m->net = PressureTransferNet(m->dir.model);
   load_weights(m->net, weights_path);
-  check_weights_digest(*m->net, recorded_digest(m->dir, "model.pt"), weights_path, config_path);
+  check_weights_digest(*m->net, recorded_digest(m->dir, ModelFiles::kWeights), weights_path, config_path);
   m->net->eval();
   if (m->device.is_cpu()) m->fast = std::make_unique<InferenceNet>(m->net);
   m->net->to(m->device);

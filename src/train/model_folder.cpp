@@ -24,8 +24,7 @@ void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
                       "exists; pass " + field_text("force") + " to overwrite or " +
                           field_text("resume") + " to continue",
                       ErrorKind::exists);
-    for (const char* f : {"config.json", "model.pt", "checkpoint.pt", "history.csv"})
-      fs::remove(fs::path(dir) / f, ec);
+    for (const char* f : ModelFiles::kAll) fs::remove(ModelFiles(dir).path(f), ec);
   } else {
     fs::path parent = fs::path(dir).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec))
@@ -38,8 +37,9 @@ void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
 LeftoverGuard::~LeftoverGuard() {
   if (!active_ || std::uncaught_exceptions() == 0) return;
   std::error_code ec;
-  if (fs::exists(fs::path(dir_) / "model.pt", ec)) return;
-  for (const char* f : {"config.json", "checkpoint.pt", "history.csv"}) fs::remove(fs::path(dir_) / f, ec);
+  const ModelFiles files(dir_);
+  if (fs::exists(files.weights(), ec)) return;
+  for (const char* f : {ModelFiles::kConfig, ModelFiles::kCheckpoint, ModelFiles::kHistory}) fs::remove(files.path(f), ec);
   if (fs::is_empty(dir_, ec)) fs::remove(dir_, ec);
 }
 

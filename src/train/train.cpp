@@ -77,8 +77,8 @@ struct Run {
   std::vector<torch::Tensor> best_snapshot;
 
   Run(const PressureSource& src, const std::string& out_dir, const TrainOptions& options, Communicator& c)
-      : source(src), o(options), dir(out_dir), config_path((dir / "config.json").string()),
-        ckpt_path((dir / "checkpoint.pt").string()), best_path((dir / "model.pt").string()),
+      : source(src), o(options), dir(out_dir), config_path(ModelFiles(out_dir).config()),
+        ckpt_path(ModelFiles(out_dir).checkpoint()), best_path(ModelFiles(out_dir).weights()),
         device(parse_device(options.device)), comm(c) {}
   bool writes() const { return comm.rank() == 0; }  // rank 0 alone writes the model folder
   void log(const std::string& line) const {
@@ -170,10 +170,9 @@ PressureTransferNet build_network(const Run& run) {
   PressureTransferNet net(run.md.model);
   if (run.md.model.contact) net->set_contact_floor(run.md.norm.min_reading_kpa / run.md.norm.pressure_scale_kpa);
   if (!o.init.empty() && !o.resume) {
-    const std::string init_weights = (fs::path(o.init) / "model.pt").string();
-    load_weights(net, init_weights);
-    check_weights_digest(*net, recorded_digest(run.previous, "model.pt"), init_weights,
-                         (fs::path(o.init) / "config.json").string());
+    const ModelFiles init(o.init);
+    load_weights(net, init.weights());
+    check_weights_digest(*net, recorded_digest(run.previous, ModelFiles::kWeights), init.weights(), init.config());
   }
   net->to(run.device);
   return net;
@@ -186,13 +185,13 @@ TrainState start_or_resume(Run& run, PressureTransferNet& net, torch::optim::Ada
   if (run.o.resume) {
     s = load_checkpoint(run.ckpt_path, net, optimizer);
     int recorded_epoch = -1;
-    const std::string recorded = recorded_digest(run.previous, "checkpoint.pt", &recorded_epoch);
+    const std::string recorded = recorded_digest(run.previous, ModelFiles::kCheckpoint, &recorded_epoch);
     // A kill between the checkpoint's rename and config.json's leaves the
     // config one epoch behind: that checkpoint passed its CRCs and is taken.
     if (recorded_epoch != s.epoch - 1) check_weights_digest(*net, recorded, run.ckpt_path, run.config_path);
   } else if (run.writes()) {
     save_checkpoint(run.ckpt_path, net, optimizer, s);  // epoch 0: the initial weights
-    record_digest(run.md, "checkpoint.pt", weights_digest(*net), 0);
+    record_digest(run.md, ModelFiles::kCheckpoint, weights_digest(*net), 0);
     run.write_config();
   }
   return s;
@@ -301,7 +300,7 @@ void record_epoch(Run& run, PressureTransferNet& net, torch::optim::Adam& optimi
     s.bad_epochs = 0;
     if (run.writes()) {
       save_weights(net, run.best_path);
-      record_digest(run.md, "model.pt", weights_digest(*net));
+      record_digest(run.md, ModelFiles::kWeights, weights_digest(*net));
       run.write_config();
     } else {
       run.best_snapshot.clear();
@@ -314,9 +313,9 @@ void record_epoch(Run& run, PressureTransferNet& net, torch::optim::Adam& optimi
                fmt("%.6g", lr) + "," + fmt("%.3f", secs) + "\n";
   if (run.writes()) {
     save_checkpoint(run.ckpt_path, net, optimizer, s);
-    record_digest(run.md, "checkpoint.pt", weights_digest(*net), s.epoch);
+    record_digest(run.md, ModelFiles::kCheckpoint, weights_digest(*net), s.epoch);
     run.write_config();
-    write_text_file((run.dir / "history.csv").string(), s.history, /*force=*/true);
+    write_text_file(ModelFiles(run.dir.string()).history(), s.history, /*force=*/true);
   }
   char line[160];
   std::snprintf(line, sizeof line, "[epoch %d/%d] train %.6f val %.6f lr %.1e %.1f s", epoch0 + 1, run.o.epochs,
@@ -355,7 +354,7 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
     for (std::size_t i = 0; i < tensors.size(); ++i) tensors[i].copy_(run.best_snapshot[i]);
   } else {
     load_weights(net, run.best_path);
-    check_weights_digest(*net, recorded_digest(md, "model.pt"), run.best_path, run.config_path);
+    check_weights_digest(*net, recorded_digest(md, ModelFiles::kWeights), run.best_path, run.config_path);
     net->to(run.device);
   }
   ValidationResult v = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true, run.comm);
