@@ -114,4 +114,5 @@ PYBIND11_MODULE(ptnet, m) {
   pybind11::register_exception_translator(pp::translate);
   pp::bind_motion(m);
   pp::bind_model(m);
+  pp::bind_train(m);
 }

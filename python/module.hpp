@@ -45,5 +45,6 @@ BodySpec body_argument(const py::handle& value, const std::string& what);
 
 void bind_motion(py::module_& m);  // bind_motion.cpp: Motion, read_bvh, generate_motion, Body, simulate
 void bind_model(py::module_& m);   // bind_model.cpp: Transfer, metrics, baselines, zoom, export
+void bind_train(py::module_& m);   // bind_train.cpp: train
 
 }  // namespace ptnet::python

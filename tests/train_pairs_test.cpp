@@ -118,3 +118,41 @@ TEST(TrainPairs, CacheReturnsTheSameFramesWithinItsBudget) {
     }
   }
 }
+
+// The options' rules live in the library (check_options), not in a front end:
+// what the CLI's flags would refuse, a caller of train() is refused too.
+TEST(TrainPairs, OptionRulesAreTheLibrarys) {
+  const auto error_of = [](const TrainOptions& o) -> std::string {
+    try {
+      check_options(o);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  TrainOptions o = TrainOptions::from_preset("paper");
+  EXPECT_EQ(error_of(o), "");
+  o.resume = true;
+  o.init = "other_model";
+  EXPECT_EQ(error_of(o), "resume and init exclude each other");
+  o = TrainOptions::from_preset("paper");
+  o.contact_weight = 0.1;  // a weight without a head (the CLI sets both)
+  EXPECT_EQ(error_of(o), "contact_weight: 0.1 trains a contact head, which model.contact leaves out");
+  o.model.contact = true;  // a head on a window network
+  EXPECT_EQ(error_of(o), "model: a contact head needs the frame architecture, found faithful");
+  o = TrainOptions::from_preset("fast");
+  o.epochs = 0;
+  EXPECT_EQ(error_of(o), "epochs: 0 is not in [1, 1e+06]");
+  // Overrides: the architecture first, then the contact head exactly when contact_weight > 0.
+  TrainOverrides v;
+  v.arch = Arch::faithful;
+  const TrainOptions window_net = TrainOptions::from_preset("fast", v);
+  EXPECT_FALSE(window_net.model.contact);
+  EXPECT_EQ(window_net.contact_weight, 0);
+  EXPECT_EQ(window_net.model.window, kWindowFrames);
+  v = TrainOverrides{};
+  v.contact_weight = 0;
+  EXPECT_FALSE(TrainOptions::from_preset("fast", v).model.contact);
+  EXPECT_TRUE(TrainOptions::from_preset("fast").model.contact);
+  EXPECT_EQ(error_of(TrainOptions::from_preset("fast", v)), "");
+}

@@ -97,7 +97,14 @@ struct ModelConfig {
   }
 };
 
-// Throws Error ("model: channels must be >= 1, found 0") for impossible values.
+// The values validate() accepts (`ptnet train`'s validators read them too).
+struct ModelConfigRanges {
+  Range window{1, 10000}, rows{1, 100000}, cols{1, 100000}, channels{1, 4096}, hidden{1, 1 << 16},
+      latent{1, 1 << 16}, context{0, 16};
+};
+inline constexpr ModelConfigRanges kModelConfigRanges{};
+
+// Throws Error ("model: channels must be in 1-4096, found 0") for impossible values.
 void validate(const ModelConfig& config);
 // Rows and cols after `level` poolings (level 0 = input): ceil halving.
 std::array<int, 2> pooled_size(const ModelConfig& config, int level);

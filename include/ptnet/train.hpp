@@ -21,11 +21,13 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "ptnet/body_spec.hpp"
 #include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/model_config.hpp"
 #include "ptnet/pressure.hpp"
 #include "ptnet/progress.hpp"
@@ -70,6 +72,26 @@ bool is_training_sequence(const BodySpec& body, const SequenceMeta& meta);
 // ---------------------------------------------------------------- training
 
 enum class Loss { mse, mse_force };  // mse_force adds a per-frame total-force term
+Loss parse_loss(const std::string& text);  // "mse" | "mse+force"; throws Error
+const char* loss_name(Loss loss);
+
+// What a front end (`ptnet train`'s flags, Python's train()) changes on top
+// of a preset; an unset field keeps the preset's value. TrainOptions::
+// from_preset(name, overrides) applies them with the rules that tie them
+// together: the architecture first (set_arch), then the window, and a
+// contact head exactly when contact_weight > 0.
+struct TrainOverrides {
+  std::optional<int> epochs, batch, micro_batch, lr_halve_every, patience, threads, stride, crop_rows;
+  std::optional<double> lr, cache_mb, contact_weight;
+  std::optional<std::uint64_t> seed;
+  std::optional<std::int64_t> samples_per_epoch, val_samples;
+  std::optional<Arch> arch;
+  std::optional<Align> align;
+  std::optional<std::array<int, 3>> channels;
+  std::optional<int> hidden, latent, window, context;
+  std::optional<bool> mirror;
+  std::optional<Loss> loss;
+};
 
 struct TrainOptions {
   std::string preset = "paper";     // paper | fast | full (set by from_preset())
@@ -129,6 +151,8 @@ struct TrainOptions {
   // values are set in one place, from_preset() (src/train/train_options.cpp);
   // summary() describes them (`ptnet train --help`).
   static TrainOptions from_preset(const std::string& name);  // throws Error if unknown
+  // The preset with `overrides` applied (TrainOverrides).
+  static TrainOptions from_preset(const std::string& name, const TrainOverrides& overrides);
   // Switches the architecture. A window network (faithful, skip, residual)
   // takes the paper's 30-frame window and has no contact head (both are the
   // frame network's); the frame network keeps the preset's window and head.
@@ -138,6 +162,21 @@ struct TrainOptions {
   // presets are described from their values, never by hand.
   std::string summary() const;
 };
+
+// The values each option accepts (the model's: ModelConfigRanges): the
+// library's check_options() and `ptnet train`'s validators read them.
+struct TrainOptionsRanges {
+  Range epochs{1, 1e6}, batch{1, 1 << 20}, micro_batch{1, 1 << 20}, lr{0, 10, true}, lr_halve_every{1, 1e6};
+  Range patience{1, 1e6}, stride{1, 1e5}, samples_per_epoch{0, 0x1p40}, val_samples{0, 0x1p40};
+  Range crop_rows{0, 1 << 24}, contact_weight{0, 1e6}, cache_mb{0, 1e7, true}, dist_timeout_s{0.1, 86400};
+};
+inline constexpr TrainOptionsRanges kTrainOptionsRanges{};
+
+// Throws Error for options train() cannot run with, naming the field
+// ("epochs: 0 is not in [1, 1e+06]", "resume and init exclude each other",
+// "contact_weight: 0.1 trains a contact head, which model.contact leaves out").
+// train() calls it first; a front end may call it before opening the data.
+void check_options(const TrainOptions& options);
 
 struct TrainResult {
   int epochs_run = 0;         // epochs completed (including resumed ones)

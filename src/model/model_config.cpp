@@ -38,19 +38,19 @@ const char* arch_name(Arch arch) {
 }
 
 void validate(const ModelConfig& c) {
-  auto positive = [](const char* what, int v, int max) {
-    if (v < 1 || v > max)
-      throw Error(std::string("model: ") + what + " must be in 1-" + std::to_string(max) +
-                  ", found " + std::to_string(v));
+  auto in = [](const char* what, int v, const Range& range) {
+    if (!range.contains(v))
+      throw Error(std::string("model: ") + what + " must be in " + std::to_string(int(range.lo)) + "-" +
+                  std::to_string(int(range.hi)) + ", found " + std::to_string(v));
   };
-  positive("window", c.window, 10000);
-  positive("rows", c.rows, 100000);
-  positive("cols", c.cols, 100000);
-  for (int ch : c.channels) positive("channels", ch, 4096);
-  positive("hidden", c.hidden, 1 << 16);
-  positive("latent", c.latent, 1 << 16);
-  if (c.context < 0 || c.context > 16)
-    throw Error("model: context must be in 0-16, found " + std::to_string(c.context));
+  const ModelConfigRanges& r = kModelConfigRanges;
+  in("window", c.window, r.window);
+  in("rows", c.rows, r.rows);
+  in("cols", c.cols, r.cols);
+  for (int ch : c.channels) in("channels", ch, r.channels);
+  in("hidden", c.hidden, r.hidden);
+  in("latent", c.latent, r.latent);
+  in("context", c.context, r.context);
   if (c.contact && c.arch != Arch::frame)
     throw Error(std::string("model: a contact head needs the frame architecture, found ") + arch_name(c.arch));
 }

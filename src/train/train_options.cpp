@@ -57,6 +57,35 @@ TrainOptions TrainOptions::from_preset(const std::string& name) {
   throw Error(field_text("preset") + ": expected paper, fast or full, found \"" + name + "\"");
 }
 
+TrainOptions TrainOptions::from_preset(const std::string& name, const TrainOverrides& v) {
+  TrainOptions o = from_preset(name);
+  if (v.epochs) o.epochs = *v.epochs;
+  if (v.batch) o.batch = *v.batch;
+  if (v.micro_batch) o.micro_batch = *v.micro_batch;
+  if (v.lr) o.lr = *v.lr;
+  if (v.lr_halve_every) o.lr_halve_every = *v.lr_halve_every;
+  if (v.patience) o.patience = *v.patience;
+  if (v.seed) o.seed = *v.seed;
+  if (v.threads) o.threads = *v.threads;
+  if (v.stride) o.stride = *v.stride;
+  if (v.samples_per_epoch) o.samples_per_epoch = *v.samples_per_epoch;
+  if (v.val_samples) o.val_samples = *v.val_samples;
+  if (v.cache_mb) o.cache_mb = *v.cache_mb;
+  if (v.arch) o.set_arch(*v.arch);  // the window below may still change
+  if (v.align) o.model.align = *v.align;
+  if (v.channels) o.model.channels = *v.channels;
+  if (v.hidden) o.model.hidden = *v.hidden;
+  if (v.latent) o.model.latent = *v.latent;
+  if (v.window) o.model.window = *v.window;
+  if (v.context) o.model.context = *v.context;
+  if (v.contact_weight) o.contact_weight = *v.contact_weight;
+  o.model.contact = o.contact_weight > 0;  // the contact-head rule (check_options)
+  if (v.crop_rows) o.crop_rows = *v.crop_rows;
+  if (v.mirror) o.mirror = *v.mirror;
+  if (v.loss) o.loss = *v.loss;
+  return o;
+}
+
 void TrainOptions::set_arch(Arch arch) {
   model.arch = arch;
   if (arch == Arch::frame) return;
@@ -80,10 +109,13 @@ std::string TrainOptions::summary() const {
   return s.str();
 }
 
-namespace {
 const char* loss_name(Loss l) { return l == Loss::mse_force ? "mse+force" : "mse"; }
 
-}  // namespace
+Loss parse_loss(const std::string& text) {
+  if (text == "mse") return Loss::mse;
+  if (text == "mse+force") return Loss::mse_force;
+  throw Error(field_text("loss") + ": expected mse or mse+force, found \"" + text + "\"");
+}
 
 json options_json(const TrainOptions& o) {
   return json{{"preset", o.preset},        {"epochs", o.epochs},
@@ -102,28 +134,29 @@ json options_json(const TrainOptions& o) {
 }
 
 void check_options(const TrainOptions& o) {
-  auto at_least = [](const char* what, double v, double min) {
-    if (!(v >= min)) {
-      std::ostringstream s;
-      s << field_text(what) << ": must be >= " << min << ", found " << v;
-      throw Error(s.str());
-    }
-  };
-  at_least("epochs", o.epochs, 1);
-  at_least("batch", o.batch, 1);
-  at_least("micro_batch", o.micro_batch, 1);
-  at_least("patience", o.patience, 1);
-  at_least("stride", o.stride, 1);
-  at_least("threads", o.threads, 0);
-  if (o.threads > max_threads())
-    throw Error(field_text("threads") + ": must be <= " + std::to_string(max_threads()) +
-                ", found " + std::to_string(o.threads));
-  at_least("lr_halve_every", o.lr_halve_every, 1);
-  at_least("samples_per_epoch", double(o.samples_per_epoch), 0);
-  at_least("val_samples", double(o.val_samples), 0);
-  at_least("crop_rows", o.crop_rows, 0);
-  at_least("contact_weight", o.contact_weight, 0);
-  if (!(o.lr > 0 && std::isfinite(o.lr))) throw Error(field_text("lr") + ": must be > 0");
+  const TrainOptionsRanges& r = kTrainOptionsRanges;
+  check_range("epochs", o.epochs, r.epochs);
+  check_range("batch", o.batch, r.batch);
+  check_range("micro_batch", o.micro_batch, r.micro_batch);
+  check_range("lr", o.lr, r.lr);
+  check_range("lr_halve_every", o.lr_halve_every, r.lr_halve_every);
+  check_range("patience", o.patience, r.patience);
+  check_range("stride", o.stride, r.stride);
+  check_range("threads", o.threads, Range{0, double(max_threads())});
+  check_range("samples_per_epoch", double(o.samples_per_epoch), r.samples_per_epoch);
+  check_range("val_samples", double(o.val_samples), r.val_samples);
+  check_range("crop_rows", o.crop_rows, r.crop_rows);
+  check_range("contact_weight", o.contact_weight, r.contact_weight);
+  check_range("cache_mb", o.cache_mb, r.cache_mb);
+  check_range("dist_timeout_s", o.dist_timeout_s, r.dist_timeout_s);
+  if (o.resume && !o.init.empty())
+    throw Error(field_text("resume") + " and " + field_text("init") + " exclude each other");
+  // The contact-head rule: a contact weight trains a contact head, which the
+  // model must have (a resumed or --init model's own head decides: plan_model).
+  if (o.contact_weight > 0 && !o.model.contact && !o.resume && o.init.empty())
+    throw Error(field_text("contact_weight") + ": " + number_text(o.contact_weight) +
+                " trains a contact head, which model.contact leaves out");
+  if (!o.resume && o.init.empty()) validate(o.model);  // the architecture before any data is read
 }
 
 double lr_at(const TrainOptions& o, int epoch0) {  // epoch0: 0-based
