@@ -59,8 +59,11 @@ std::string format_bodies_csv(const std::vector<BodySpec>& bodies);
 // Standard normal by Box-Muller on raw 53-bit uniforms: the same numbers on
 // every platform (std::normal_distribution is implementation-defined).
 double standard_normal(std::mt19937_64& rng);
-// A body drawn from the paper's distribution for `sex` (paper.hpp), height
-// then weight from `rng`, clamped to the accepted range, rounded to 0.1.
+// The body `height_sd` and `weight_sd` standard deviations from the mean of
+// the paper's distribution for `sex` (paper.hpp), clamped to the accepted
+// range, rounded to 0.1.
+BodySpec paper_body_at(Sex sex, double height_sd, double weight_sd, const std::string& id, const std::string& role);
+// A body drawn from that distribution: height then weight from `rng`.
 BodySpec draw_paper_body(std::mt19937_64& rng, Sex sex, const std::string& id, const std::string& role);
 // `count` points of a Latin hypercube over [0, 1)^2: point i sits at the
 // centres of strata a[i] and b[i] of `count` each, a and b two permutations

@@ -147,15 +147,21 @@ std::vector<std::array<double, 2>> latin_hypercube(int count, std::mt19937_64& r
   return out;
 }
 
-BodySpec draw_paper_body(std::mt19937_64& rng, Sex sex, const std::string& id, const std::string& role) {
+BodySpec paper_body_at(Sex sex, double height_sd, double weight_sd, const std::string& id, const std::string& role) {
   const BodyDistribution& d = sex == Sex::male ? kPaperMale : kPaperFemale;
   BodySpec b;
   b.id = id;
   b.sex = sex;
-  b.height_cm = round1(std::clamp(d.height_mean_cm + d.height_sd_cm * standard_normal(rng), kMinHeightCm, kMaxHeightCm));
-  b.weight_kg = round1(std::clamp(d.weight_mean_kg + d.weight_sd_kg * standard_normal(rng), kMinWeightKg, kMaxWeightKg));
+  b.height_cm = round1(std::clamp(d.height_mean_cm + d.height_sd_cm * height_sd, kMinHeightCm, kMaxHeightCm));
+  b.weight_kg = round1(std::clamp(d.weight_mean_kg + d.weight_sd_kg * weight_sd, kMinWeightKg, kMaxWeightKg));
   b.role = role;
   return b;
+}
+
+BodySpec draw_paper_body(std::mt19937_64& rng, Sex sex, const std::string& id, const std::string& role) {
+  const double height_sd = standard_normal(rng);  // height first: the same bodies as ever
+  const double weight_sd = standard_normal(rng);
+  return paper_body_at(sex, height_sd, weight_sd, id, role);
 }
 
 }  // namespace ptnet
