@@ -100,11 +100,9 @@ void setup(CLI::App& app) {
                 "Training sources besides recorded and oracle: model, model-mean, copy, weight-ratio, body-scale, "
                 "body-scale-read")
       ->capture_default_str();
-  std::vector<std::string> deployment_bands;
-  for (const ptnet::har::BodyBand& b : ptnet::har::body_bands())
-    if (b.name != "mid" && b.name != "all") deployment_bands.push_back(b.name);
   s->add_option("--deployment-bands", c->bands,
-                "Deployment populations: " + ptnet::join(deployment_bands, ", ") + " (docs/har_bench.md)")
+                "Deployment populations: " + ptnet::join(ptnet::har::deployment_band_names(), ", ") +
+                    " (docs/har_bench.md)")
       ->capture_default_str();
   s->add_option("--activities", c->activities, "Comma-separated activities (default: every one with a usable clip)");
   s->add_option("--recorded-bodies", c->o.recorded_bodies, "Recorded bodies (band mid)")

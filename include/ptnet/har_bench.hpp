@@ -53,6 +53,9 @@ struct BodyBand {
 // covering every other band).
 const std::vector<BodyBand>& body_bands();
 const BodyBand& body_band(const std::string& name);  // throws Error listing the names
+// The bands a deployment population may come from: every band but mid (the
+// recorded population) and all (the transfer model's training bodies).
+std::vector<std::string> deployment_band_names();
 
 // `count` bodies of a band, ids <prefix>1.., sexes alternating (female
 // first), stature and BMI from a Latin hypercube over the band (each of the

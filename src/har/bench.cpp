@@ -53,9 +53,12 @@ void check_options(const BenchOptions& o, const TransferFn& transfer) {
   if (o.recorded_bodies < 1 || o.bodies_per_band < 1)
     throw Error("har-bench: need at least 1 recorded body and 1 body per deployment band");
   if (o.deployment_bands.empty()) throw Error("har-bench: no deployment band given");
+  const std::vector<std::string> deployment = deployment_band_names();
   for (const std::string& b : o.deployment_bands) {
     body_band(b);
-    if (b == "mid") throw Error("har-bench: band mid is the recorded population, not a deployment band");
+    if (std::find(deployment.begin(), deployment.end(), b) == deployment.end())
+      throw Error("har-bench: band " + b + " is not a deployment band (mid is the recorded population, all the "
+                  "transfer model's training bodies; deployment bands: " + join(deployment) + ")");
   }
   std::vector<std::string> seen;
   for (const std::string& s : o.syntheses) {

@@ -46,6 +46,13 @@ const BodyBand& body_band(const std::string& name) {
   throw Error("har-bench: unknown body band '" + name + "' (bands: " + join(names) + ")");
 }
 
+std::vector<std::string> deployment_band_names() {
+  std::vector<std::string> names;
+  for (const BodyBand& b : body_bands())
+    if (b.name != "mid" && b.name != "all") names.push_back(b.name);
+  return names;
+}
+
 std::vector<BodySpec> band_bodies(const BodyBand& band, int count, std::uint64_t seed, const std::string& prefix,
                                   const std::string& role) {
   if (count < 1) throw Error("har-bench: a band needs at least 1 body, found " + std::to_string(count));
