@@ -87,10 +87,6 @@ ClipSplit split_clip(int frames) {
 
 namespace {
 
-void say(const BenchOptions& o, const std::string& line) {
-  if (o.progress) o.progress(progress_line("har-bench", line));
-}
-
 std::vector<ClipSource> mocap_sources(const std::string& folder, std::vector<std::string>& activity) {
   const std::string csv = (std::filesystem::path(folder) / "clips.csv").string();
   const std::vector<ClipRow> rows = read_clips_csv(csv);
