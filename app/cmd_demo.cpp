@@ -69,7 +69,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
 void run(const DemoCli& c) {
   namespace fs = std::filesystem;
   const bool quiet = globals().quiet;
-  fs::create_directories(c.out);
+  make_folder(c.out);
   const std::string data_path = (fs::path(c.out) / "data.h5").string();
   const std::string bodies_path = (fs::path(c.out) / "bodies.csv").string();
   const std::string figure_path = (fs::path(c.out) / "walking_two_bodies.png").string();
@@ -119,9 +119,10 @@ void setup(CLI::App& app) {
       "demo", "The embedded default, no external data: procedural motions on sampled bodies, simulation,\n"
               "training (fast preset), evaluation (the paper's Table 2) and figures, all kept in --out");
   cmd->add_option("--out", c->out, "Output folder")->capture_default_str();
-  cmd->add_option("--performers", c->corpus.performers, "Procedural performers")->capture_default_str()->check(CLI::Range(1, 50));
-  cmd->add_option("--takes", c->corpus.takes, "Takes per performer and category")->capture_default_str()->check(CLI::Range(1, 5));
-  cmd->add_option("--seconds", c->corpus.seconds, "Seconds per clip")->capture_default_str()->check(in_range(2, 120));
+  const EmbeddedCorpusRanges& r = kEmbeddedCorpusRanges;
+  cmd->add_option("--performers", c->corpus.performers, "Procedural performers")->capture_default_str()->check(int_range(r.performers));
+  cmd->add_option("--takes", c->corpus.takes, "Takes per performer and category")->capture_default_str()->check(int_range(r.takes));
+  cmd->add_option("--seconds", c->corpus.seconds, "Seconds per clip")->capture_default_str()->check(in_range(r.seconds));
   cmd->add_option("--seed", c->seed, "Seed")->capture_default_str();
   cmd->add_option("--threads", c->threads, "Simulation threads (0: all cores)")->capture_default_str()->check(thread_count(true));
   cmd->add_option("--train-threads", c->train_threads, "Training threads (the results depend on it)")

@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
+#include "ptnet/transfer.hpp"
 
 namespace ptnet::cli {
 namespace {
@@ -30,11 +31,11 @@ void setup(CLI::App& app) {
   cmd->add_option("--data", c->data_path, "Dataset (.h5) with at least two 'original' bodies")->required();
   cmd->add_option("--threshold", c->threshold_kpa, "Binarisation threshold for binary R^2 and IoU (kPa)")
       ->capture_default_str()
-      ->check(positive(1e6));
+      ->check(in_range(kThresholdKpaRange));
   cmd->add_option("--out", c->out_dir, "Report folder")->capture_default_str();
   cmd->add_option("--stride", c->stride, "Frames between transfer windows (averaged)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
+      ->check(int_range(kTransferOptionsRanges.stride));
   cmd->add_option("--threads", c->threads, "Torch threads (0: default)")->capture_default_str()->check(thread_count(true));
   cmd->add_flag("--raw", c->raw, "Raw network output: skip the model's fitted contact threshold");
   cmd->add_flag("--force", c->force, "Overwrite existing report files");

@@ -45,11 +45,8 @@ void run(HarBenchCli& c) {
               << c.training_set << " --out hb_model --preset fast\n";
     return;
   }
-  std::error_code ec;
-  if (fs::exists(c.out, ec) && !fs::is_directory(c.out, ec)) throw ptnet::Error::in(c.out, "exists and is not a folder");
+  ptnet::check_outputs_in_folder(c.out, {"results.json", "index.html", "f1.svg"}, c.force);
   const auto path = [&](const std::string& name) { return (fs::path(c.out) / name).string(); };
-  for (const std::string& p : {path("results.json"), path("index.html"), path("f1.svg")})
-    ptnet::check_overwrite(p, c.force);
 
   std::optional<ptnet::Transfer> transfer;
   ptnet::har::TransferFn fn;
@@ -63,8 +60,7 @@ void run(HarBenchCli& c) {
     };
   }
   const ptnet::har::BenchResult r = ptnet::har::run_bench(o, fn);
-  fs::create_directories(c.out, ec);
-  if (ec) throw ptnet::Error::in(c.out, "cannot create folder: " + ec.message());
+  ptnet::make_folder(c.out);
   ptnet::write_text_file(path("results.json"), ptnet::har::bench_json(r), c.force);
   const std::string page = ptnet::har::write_bench_report(c.out, r, c.force).back();
   std::cout << ptnet::har::format_bench(r);

@@ -77,9 +77,7 @@ void run_one(const MotionsCli& o) {
 void run_set(const MotionsCli& o) {
   namespace fs = std::filesystem;
   const std::vector<Category> categories = parse_categories(o.categories);
-  std::error_code ec;
-  fs::create_directories(o.out_dir, ec);
-  if (!fs::is_directory(o.out_dir)) throw Error::in(o.out_dir, "cannot create the output folder");
+  make_folder(o.out_dir);
   struct Clip {
     std::string file;
     Category category;
@@ -128,7 +126,7 @@ void setup(CLI::App& app) {
                          ->capture_default_str();
   auto* out_dir = cmd->add_option("--out-dir", opt->out_dir, "A set: output folder (one BVH per clip + clips.csv)");
   cmd->add_option("--seconds", opt->seconds, "Clip length (s)")->capture_default_str()->check(in_range(0.1, 3600));
-  cmd->add_option("--fps", opt->fps, "Frame rate (Hz)")->capture_default_str()->check(in_range(1, 1000));
+  cmd->add_option("--fps", opt->fps, "Frame rate (Hz)")->capture_default_str()->check(in_range(kFpsRange));
   cmd->add_option("--seed", opt->seed, "Seed, mixed with performer and take")->capture_default_str();
   cmd->add_option("--height-cm", opt->height_cm, "Body height (cm); default: the performer's own")
       ->check(in_range(50, 250));

@@ -12,23 +12,13 @@ struct RenderCli {
   std::string dataset;
   std::vector<std::string> sequences;
   std::string out;
-  int frames = 0;
-  std::vector<int> frame_list;
-  bool cop = false;
-  double vmax_kpa = 0;
-  int cell_px = 7;
+  ptnet::FigureOptions figure;
   bool force = false;
 };
 
 void run(const RenderCli& o) {
   ptnet::Dataset d = ptnet::Dataset::open(o.dataset);
-  ptnet::FigureOptions fig;
-  fig.cell_px = o.cell_px;
-  fig.vmax_kpa = o.vmax_kpa;
-  fig.cop = o.cop;
-  fig.frames = o.frames;
-  fig.frame_list = o.frame_list;
-  ptnet::render_figure(d, o.sequences, o.out, fig, o.force);
+  ptnet::render_figure(d, o.sequences, o.out, o.figure, o.force);
   if (!ptnet::cli::globals().quiet) std::fprintf(stderr, "render: wrote %s\n", o.out.c_str());
 }
 
@@ -44,16 +34,16 @@ void setup(CLI::App& app) {
   cmd->add_option("-s,--sequence", o->sequences, "Sequence to draw (repeat for several; `ptnet info` lists them)")
       ->required();
   cmd->add_option("-o,--out", o->out, "Output figure: .png (strip) or .gif (animation)")->required();
-  cmd->add_option("--frames", o->frames, "Number of evenly spaced frames (PNG default 6; GIF default all)")
+  cmd->add_option("--frames", o->figure.frames, "Number of evenly spaced frames (PNG default 6; GIF default all)")
       ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--frame-list", o->frame_list, "Explicit frame indices, e.g. 0,10,20")
+  cmd->add_option("--frame-list", o->figure.frame_list, "Explicit frame indices, e.g. 0,10,20")
       ->delimiter(',')
       ->check(CLI::Range(0, 2147483647))
       ->excludes("--frames");
-  cmd->add_flag("--cop", o->cop, "Draw the centre-of-pressure trace");
-  cmd->add_option("--vmax", o->vmax_kpa, "Top of the colour scale in kPa (default: data maximum, rounded up)")
+  cmd->add_flag("--cop", o->figure.cop, "Draw the centre-of-pressure trace");
+  cmd->add_option("--vmax", o->figure.vmax_kpa, "Top of the colour scale in kPa (default: data maximum, rounded up)")
       ->check(ptnet::cli::positive(1e9));
-  cmd->add_option("--cell-px", o->cell_px, "Pixels per mat cell")->capture_default_str()->check(CLI::Range(1, 40));
+  cmd->add_option("--cell-px", o->figure.cell_px, "Pixels per mat cell")->capture_default_str()->check(CLI::Range(1, 40));
   cmd->add_flag("-f,--force", o->force, "Overwrite the output if it exists");
   cmd->callback([o] { run(*o); });
 }

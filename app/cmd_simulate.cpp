@@ -45,6 +45,7 @@ struct SimulateCli {
   std::string units = "auto", up = "y";
   bool no_floor = false;
   std::string shard;  // "K/N"
+  std::vector<double> speeds;  // empty: each clip once, as recorded
 };
 
 void run(const SimulateCli& c) {
@@ -75,6 +76,7 @@ void run(const SimulateCli& c) {
     mo.fps = o.fps;
     clips = clips_from_files(c.motions, c.clips, mo);
   }
+  if (!c.speeds.empty()) clips = clips_at_speeds(clips, c.speeds);
   if (!quiet)
     std::cerr << "simulate: " << clips.size() << " clips x " << bodies.size() << " bodies = "
               << clips.size() * bodies.size() << " sequences"
@@ -101,14 +103,15 @@ void setup(CLI::App& app) {
   cmd->add_flag("--embedded", c->embedded, "Procedural motions (as ptnet demo) instead of BVH files");
   cmd->add_option("--bodies", c->bodies, "Bodies CSV (id,sex,height_cm,weight_kg[,role])")->required();
   cmd->add_option("-o,--out", c->out, "Output dataset (.h5)")->required();
+  const EmbeddedCorpusRanges& er = kEmbeddedCorpusRanges;
   cmd->add_option("--performers", c->corpus.performers, "--embedded: procedural performers")
-      ->capture_default_str()->check(CLI::Range(1, 100));
+      ->capture_default_str()->check(int_range(er.performers));
   cmd->add_option("--takes", c->corpus.takes, "--embedded: takes per performer and category")
-      ->capture_default_str()->check(CLI::Range(1, 10));
+      ->capture_default_str()->check(int_range(er.takes));
   cmd->add_option("--seconds", c->corpus.seconds, "--embedded: seconds per clip")
-      ->capture_default_str()->check(in_range(1, 600));
+      ->capture_default_str()->check(in_range(er.seconds));
   cmd->add_option("--fps", c->dataset.fps, "Frame rate of the dataset (motions are resampled)")
-      ->capture_default_str()->check(in_range(1, 1000));
+      ->capture_default_str()->check(in_range(kFpsRange));
   cmd->add_option("--seed", c->dataset.seed, "Seed of the sensor noise (and of --embedded motions)")->capture_default_str();
   cmd->add_option("--threads", c->dataset.threads, "Threads (0: all cores)")->capture_default_str()->check(thread_count(true));
   cmd->add_option("--placement", c->sim.placement, "fixed: a physical mat; follow: the mat follows the body")
@@ -137,6 +140,11 @@ void setup(CLI::App& app) {
       ->check(in_range(r.threshold_kpa));
   cmd->add_option("--quantum-kpa", c->sim.quantum_kpa, "ADC step, 0: off" + sensor_default(sensor.quantum_kpa))
       ->check(in_range(r.quantum_kpa));
+  cmd->add_option("--speeds", c->speeds,
+                  "Comma-separated playback speeds, e.g. 0.8,1,1.25: every clip again at each, re-simulated "
+                  "(a faster or slower motion; ids get _x0.8), to augment a training set")
+      ->delimiter(',')
+      ->check(in_range(kClipSpeedRange));
   cmd->add_flag("--no-floor", c->no_floor,
                 "Skip the second-seed copies of original-body sequences (/floor: the noise floor of evaluate)");
   cmd->add_option("--shard", c->shard,

@@ -131,6 +131,18 @@ long long read_npy_header(int fd, std::string head, const std::string& name, con
   return h.shape[0];
 }
 
+// At the end of an input that was not stopped: no bytes after the frames an
+// npy header promised, and at least a window of frames.
+void check_clean_end(int fd, long long promised, const Stream& live, const std::string& name) {
+  char extra = 0;
+  if (promised >= 0 && read_fully(fd, &extra, 1, name) > 0 && g_stop.load() == 0)
+    throw Error::in(name, "more data after the " + std::to_string(promised) + " frames the npy header promises");
+  const long long in = live.frames_in(), window = live.max_output_frames();
+  if (in > 0 && in < window)
+    throw Error::in(name, std::to_string(in) + " frame" + (in == 1 ? "" : "s") + ", fewer than the model's window of " +
+                              std::to_string(window) + ": no frame was transferred");
+}
+
 void run(const StreamCli& c) {
   StreamOptions o;
   o.threads = c.threads;
@@ -197,15 +209,7 @@ void run(const StreamCli& c) {
     write_fully(out.data(), std::size_t(ready) * cells);
     if (c.stats) latency.add(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
-  if (g_stop.load() == 0) {
-    char extra = 0;
-    if (promised >= 0 && read_fully(fd, &extra, 1, name) > 0 && g_stop.load() == 0)
-      throw Error::in(name, "more data after the " + std::to_string(promised) + " frames the npy header promises");
-    const long long in = live.frames_in(), window = live.max_output_frames();
-    if (in > 0 && in < window)
-      throw Error::in(name, std::to_string(in) + " frame" + (in == 1 ? "" : "s") + ", fewer than the model's window of " +
-                                std::to_string(window) + ": no frame was transferred");
-  }
+  if (g_stop.load() == 0) check_clean_end(fd, promised, live, name);
   if (c.stats && latency.count() > 0)
     std::fprintf(stderr, "stream: %lld frames, per-frame latency p50 %.3f ms, p99 %.3f ms, max %.3f ms\n",
                  static_cast<long long>(latency.count()), latency.quantile(0.5), latency.quantile(0.99),

@@ -103,7 +103,7 @@ void setup(CLI::App& app) {
   cmd->add_option("--out", opt->out, "Output .h5 or .npy")->required();
   cmd->add_option("--stride", opt->stride, "Frames between window starts (1 = every window)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
+      ->check(int_range(kTransferOptionsRanges.stride));
   cmd->add_option("--threads", opt->threads, "CPU threads (0 = LibTorch default)")->check(thread_count(true));
   cmd->add_option("--device", opt->device, "cpu | cuda")->capture_default_str();
   cmd->add_flag("--raw", opt->raw, "Raw network output: skip the model's fitted contact threshold");

@@ -42,9 +42,7 @@ std::vector<std::string> subject_list(const std::string& text, const std::string
 
 void write_outputs(const ValidateHarCli& o, const ptnet::har::HarResult& r,
                    const std::string& json_path, const std::string& png_path) {
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (ec) throw ptnet::Error::in(o.out, "cannot create folder: " + ec.message());
+  ptnet::make_folder(o.out);
   ptnet::write_text_file(json_path, ptnet::har::to_json(r), o.force);
   ptnet::har::write_confusion_png(png_path, r, o.force);
   const std::string page = ptnet::har::write_html_report(o.out, r, o.force).back();
@@ -74,14 +72,10 @@ void run(const ValidateHarCli& o) {
   if (!quiet) h.progress = ptnet::cli::print;
 
   // Outputs are checked before hours of work, not after.
-  std::error_code ec;
-  if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
-    throw ptnet::Error::in(o.out, "exists and is not a folder");
+  ptnet::check_outputs_in_folder(o.out, {"results.json", "confusion.png", "index.html"}, o.force);
   const std::string json_path = (fs::path(o.out) / "results.json").string();
   const std::string png_path = (fs::path(o.out) / "confusion.png").string();
   const std::string page_path = (fs::path(o.out) / "index.html").string();
-  for (const auto& p : {json_path, png_path, page_path})
-    ptnet::check_overwrite(p, o.force);
 
   ptnet::Dataset real = ptnet::Dataset::open(o.real);
   ptnet::har::check_subjects(real, h);  // before loading anything else

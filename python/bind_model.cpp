@@ -25,9 +25,8 @@ void check_same_shape(const FloatArray& a, const FloatArray& b, const char* what
 
 py::object json_object(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
-}  // namespace
-
-void bind_model(py::module_& m) {
+// ptnet.Transfer: a trained model folder.
+void bind_transfer(py::module_& m) {
   py::class_<Transfer>(m, "Transfer",
                        "A trained model folder (config.json + model.pt, validated): run() transfers a pressure "
                        "sequence from one body to another, as `ptnet transfer` does.")
@@ -64,7 +63,10 @@ void bind_model(py::module_& m) {
       .def_property_readonly("window", [](const Transfer& t) { return t.model().model.window; })
       .def_property_readonly("fps", [](const Transfer& t) { return t.model().fps; })
       .def_property_readonly("arch", [](const Transfer& t) { return std::string(arch_name(t.model().model.arch)); });
+}
 
+// The metrics of `ptnet evaluate`.
+void bind_metrics(py::module_& m) {
   m.def("rmse",
         [](const FloatArray& predicted, const FloatArray& truth) {
           check_same_shape(predicted, truth, "rmse");
@@ -103,7 +105,10 @@ void bind_model(py::module_& m) {
         },
         py::arg("predicted"), py::arg("truth"), py::arg("threshold_kpa") = kContactKpa, py::arg("pitch_m") = kMatPitchM,
         "Every metric of `ptnet evaluate` (docs/results.md) of two [T, rows, cols] sequences, as a dict.");
+}
 
+// The analytic baselines and the body-scale zoom.
+void bind_baselines(py::module_& m) {
   m.def("weight_ratio_baseline",
         [](const FloatArray& pressure, double source_weight_kg, double target_weight_kg) {
           return pressure_array(weight_ratio_baseline(pressure_sequence(pressure, MatSpec{}, kFps, "pressure"),
@@ -128,7 +133,14 @@ void bind_model(py::module_& m) {
         "the input alignment of --align zoom models (scale = target / source height, gain = body_gain).");
   m.def("body_gain", &body_gain, py::arg("source_height"), py::arg("source_weight"), py::arg("target_height"),
         py::arg("target_weight"), "Weight ratio over area ratio: the gain of the body-scale alignment.");
+}
 
+}  // namespace
+
+void bind_model(py::module_& m) {
+  bind_transfer(m);
+  bind_metrics(m);
+  bind_baselines(m);
   m.def("export_weights",
         [](const std::string& model_dir, const std::string& out_path, bool force) {
           py::gil_scoped_release release;

@@ -3,33 +3,68 @@
 // library's check_options before the data is opened.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "module.hpp"
 #include "ptnet/train.hpp"
 
 namespace ptnet::python {
+namespace {
+
+// Every TrainOverrides field by its name, the keyword Python passes it as
+// (None keeps the preset's value).
+template <class T>
+void set(std::optional<T>& field, py::handle value) {
+  field = value.cast<T>();
+}
+
+TrainOverrides overrides_from(const py::kwargs& kwargs) {
+  using Setter = void (*)(TrainOverrides&, py::handle);
+  static const std::vector<std::pair<const char*, Setter>> fields = {
+      {"epochs", [](TrainOverrides& v, py::handle h) { set(v.epochs, h); }},
+      {"batch", [](TrainOverrides& v, py::handle h) { set(v.batch, h); }},
+      {"micro_batch", [](TrainOverrides& v, py::handle h) { set(v.micro_batch, h); }},
+      {"lr", [](TrainOverrides& v, py::handle h) { set(v.lr, h); }},
+      {"lr_halve_every", [](TrainOverrides& v, py::handle h) { set(v.lr_halve_every, h); }},
+      {"patience", [](TrainOverrides& v, py::handle h) { set(v.patience, h); }},
+      {"seed", [](TrainOverrides& v, py::handle h) { set(v.seed, h); }},
+      {"threads", [](TrainOverrides& v, py::handle h) { set(v.threads, h); }},
+      {"stride", [](TrainOverrides& v, py::handle h) { set(v.stride, h); }},
+      {"crop_rows", [](TrainOverrides& v, py::handle h) { set(v.crop_rows, h); }},
+      {"cache_mb", [](TrainOverrides& v, py::handle h) { set(v.cache_mb, h); }},
+      {"contact_weight", [](TrainOverrides& v, py::handle h) { set(v.contact_weight, h); }},
+      {"samples_per_epoch", [](TrainOverrides& v, py::handle h) { set(v.samples_per_epoch, h); }},
+      {"val_samples", [](TrainOverrides& v, py::handle h) { set(v.val_samples, h); }},
+      {"arch", [](TrainOverrides& v, py::handle h) { v.arch = parse_arch(h.cast<std::string>()); }},
+      {"align", [](TrainOverrides& v, py::handle h) { v.align = parse_align(h.cast<std::string>()); }},
+      {"loss", [](TrainOverrides& v, py::handle h) { v.loss = parse_loss(h.cast<std::string>()); }},
+      {"channels", [](TrainOverrides& v, py::handle h) { set(v.channels, h); }},
+      {"hidden", [](TrainOverrides& v, py::handle h) { set(v.hidden, h); }},
+      {"latent", [](TrainOverrides& v, py::handle h) { set(v.latent, h); }},
+      {"window", [](TrainOverrides& v, py::handle h) { set(v.window, h); }},
+      {"context", [](TrainOverrides& v, py::handle h) { set(v.context, h); }},
+      {"mirror", [](TrainOverrides& v, py::handle h) { set(v.mirror, h); }},
+  };
+  TrainOverrides v;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = py::str(key);
+    const auto it = std::find_if(fields.begin(), fields.end(), [&](const auto& f) { return name == f.first; });
+    if (it == fields.end()) throw py::type_error("train() got an unexpected keyword argument '" + name + "'");
+    if (!value.is_none()) it->second(v, value);
+  }
+  return v;
+}
+
+}  // namespace
 
 void bind_train(py::module_& m) {
   m.def("train",
-        [](const std::string& data, const std::string& out, const std::string& preset, std::optional<int> epochs,
-           std::optional<int> batch, std::optional<double> lr, std::optional<std::uint64_t> seed,
-           std::optional<int> threads, std::optional<std::string> arch, std::optional<int> window,
-           std::optional<double> contact_weight, std::optional<std::int64_t> samples_per_epoch,
-           std::optional<std::int64_t> val_samples, bool resume, const std::string& init, bool identity_pairs,
-           bool force) {
-          TrainOverrides v;
-          v.epochs = epochs;
-          v.batch = batch;
-          v.lr = lr;
-          v.seed = seed;
-          v.threads = threads;
-          if (arch) v.arch = parse_arch(*arch);
-          v.window = window;
-          v.contact_weight = contact_weight;
-          v.samples_per_epoch = samples_per_epoch;
-          v.val_samples = val_samples;
-          TrainOptions o = TrainOptions::from_preset(preset, v);
+        [](const std::string& data, const std::string& out, const std::string& preset, bool resume,
+           const std::string& init, bool identity_pairs, bool force, const py::kwargs& overrides) {
+          TrainOptions o = TrainOptions::from_preset(preset, overrides_from(overrides));
           o.resume = resume;
           o.init = init;
           o.identity_pairs = identity_pairs;
@@ -50,15 +85,14 @@ void bind_train(py::module_& m) {
           d["seconds"] = r.seconds;
           return d;
         },
-        py::arg("data"), py::arg("out"), py::kw_only(), py::arg("preset") = "paper", py::arg("epochs") = py::none(),
-        py::arg("batch") = py::none(), py::arg("lr") = py::none(), py::arg("seed") = py::none(),
-        py::arg("threads") = py::none(), py::arg("arch") = py::none(), py::arg("window") = py::none(),
-        py::arg("contact_weight") = py::none(), py::arg("samples_per_epoch") = py::none(),
-        py::arg("val_samples") = py::none(), py::arg("resume") = false, py::arg("init") = "",
-        py::arg("identity_pairs") = false, py::arg("force") = false,
-        "`ptnet train`: the preset (paper | fast | full) with the given options (None: the preset's) on the "
-        "dataset file `data`, into the model folder `out`; returns the run's summary as a dict. The same "
-        "checks as the CLI: resume and init exclude each other, a contact weight needs the frame network.");
+        py::arg("data"), py::arg("out"), py::kw_only(), py::arg("preset") = "paper", py::arg("resume") = false,
+        py::arg("init") = "", py::arg("identity_pairs") = false, py::arg("force") = false,
+        "`ptnet train`: the preset (paper | fast | full) with any option of TrainOverrides as a keyword "
+        "(epochs, batch, micro_batch, lr, lr_halve_every, patience, seed, threads, stride, crop_rows, "
+        "cache_mb, contact_weight, samples_per_epoch, val_samples, arch, align, loss, channels, hidden, "
+        "latent, window, context, mirror; None: the preset's) on the dataset file `data`, into the model "
+        "folder `out`; returns the run's summary as a dict. The same checks as the CLI: resume and init "
+        "exclude each other, a contact weight needs the frame network.");
 }
 
 }  // namespace ptnet::python

@@ -16,6 +16,8 @@
 #   SAMPLING    the retargeted training bodies: paper (Gaussian draws, default) or
 #               cover (a Latin hypercube over mean +- 2.5 sd: 132-208 cm); the
 #               original test bodies are the same either way
+#   SPEEDS      playback speeds of the training clips (e.g. 0.8,1,1.25: ptnet simulate
+#               --speeds, each clip re-simulated at each speed); the test clips stay at 1
 #   TRAIN_ARGS  more `ptnet train` flags (e.g. "--epochs 1 --samples-per-epoch 256" to try it out)
 #   CORPUS      the corpus folder (default ../shared/mocap-corpus beside the source folder)
 #   PTNET       the ptnet binary (default build/ptnet of the source folder)
@@ -41,6 +43,7 @@ work=$1
 preset=${PRESET:-fast}
 seed=${SEED:-1}
 sampling=${SAMPLING:-paper}
+speeds=${SPEEDS:-}
 train_args=${TRAIN_ARGS:-}
 corpus=${CORPUS:-$src/../shared/mocap-corpus}
 ptnet=${PTNET:-$src/build/ptnet}
@@ -48,6 +51,7 @@ ptnet=${PTNET:-$src/build/ptnet}
 case "$preset" in fast | full | paper) ;; *) die "PRESET: expected fast, full or paper, found '$preset'" ;; esac
 [[ "$seed" =~ ^[0-9]+$ ]] || die "SEED: expected a whole number, found '$seed'"
 case "$sampling" in paper | cover) ;; *) die "SAMPLING: expected paper or cover, found '$sampling'" ;; esac
+[[ -z "$speeds" || "$speeds" =~ ^[0-9.]+(,[0-9.]+)*$ ]] || die "SPEEDS: expected speeds like 0.8,1,1.25, found '$speeds'"
 if [ -z "${CORPUS:-}" ] && [ ! -d "$src/../shared" ]; then
   die "$src/../shared: no such folder (the shared data beside the source folder; or set CORPUS)"
 fi
@@ -66,12 +70,14 @@ settings="preset=$preset
 seed=$seed
 train_args=$train_args
 corpus=$corpus"
-# SAMPLING enters the settings only when it is not the default, so work
-# folders made before it existed still resume.
+# SAMPLING and SPEEDS enter the settings only when not the default, so work
+# folders made before they existed still resume.
 [ "$sampling" = paper ] || settings="$settings
 sampling=$sampling"
+[ -z "$speeds" ] || settings="$settings
+speeds=$speeds"
 if [ -f "$work/settings.txt" ]; then
-  recorded=$(grep -E '^(preset|seed|train_args|corpus|sampling)=' "$work/settings.txt")
+  recorded=$(grep -E '^(preset|seed|train_args|corpus|sampling|speeds)=' "$work/settings.txt")
   [ "$recorded" = "$settings" ] || die "$work/settings.txt: made with other settings ($(echo $recorded)); use another work folder"
 else
   cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
@@ -128,8 +134,11 @@ while read -r p n_train n_test; do
     continue
   fi
   common=(--placement follow --seed 1 --threads 1)
+  at_speeds=()
+  [ -z "$speeds" ] || at_speeds=(--speeds "$speeds")
   [ -f "$dir/train.h5" ] || timed simulate_train "$dir/simulate_train.log" \
-    "$ptnet" simulate --clips "$dir/train_clips.csv" --bodies "$work/bodies_retargeted.csv" --out "$dir/train.h5" "${common[@]}"
+    "$ptnet" simulate --clips "$dir/train_clips.csv" --bodies "$work/bodies_retargeted.csv" --out "$dir/train.h5" \
+    "${common[@]}" "${at_speeds[@]}"
   [ -f "$dir/test.h5" ] || timed simulate_test "$dir/simulate_test.log" \
     "$ptnet" simulate --clips "$dir/test_clips.csv" --bodies "$work/bodies_original.csv" --out "$dir/test.h5" "${common[@]}"
 

@@ -67,7 +67,7 @@ TEST_F(Reliability, UsageErrorsAreOneLineWithStatus2) {
   expect_usage_error("evaluate --model m --data d.h5 --threads 100000", "--threads");
   expect_usage_error("simulate --embedded --bodies bodies.csv --out x.h5 --noise-kpa nan", "--noise-kpa");
   expect_usage_error("simulate --embedded --bodies bodies.csv --out x.h5 --saturation-kpa -1",
-                     "--saturation-kpa: '-1' is not in (0, 1e+06]");
+                     "--saturation-kpa: '-1' is not in (0, 1000000]");
   expect_usage_error("render d.h5 -s a --out a.png --vmax nan", "--vmax");
   expect_usage_error("train --data", "--data");
 }

@@ -137,6 +137,38 @@ TEST(SimWalking, ProceduralPeakForceIsOneToOneAndAHalfBodyWeights) {
   }
 }
 
+// A clip played faster (clips_at_speeds, load_clip) is the same walk in less
+// time: the same path in 1/s of the frames, and, simulated anew, the feet
+// land harder (the vertical force follows the centre of mass's faster rise
+// and fall), where a warped map would keep the slow walk's forces.
+TEST(SimWalking, FasterPlaybackIsTheSamePathAndLandsHarder) {
+  ClipSource clip;
+  clip.procedural.category = Category::walking;
+  clip.procedural.performer = 1;
+  clip.procedural.seconds = 12;
+  clip.meta.motion_id = "walk";
+  const std::vector<ClipSource> at = clips_at_speeds({clip}, {0.8, 1.25});
+  ASSERT_EQ(at.size(), 2u);
+  EXPECT_EQ(at[0].meta.motion_id, "walk_x0.8");
+  EXPECT_EQ(at[1].meta.motion_id, "walk_x1.25");
+  const Motion slow = retarget(load_clip(at[0], kFps), kBody.height_cm);
+  const Motion fast = retarget(load_clip(at[1], kFps), kBody.height_cm);
+  EXPECT_NEAR(double(slow.size()) / fast.size(), 1.25 / 0.8, 0.01);
+  const auto path = [](const Motion& m) {
+    const Eigen::Vector3d d = m.frames.back()[kPelvis] - m.frames.front()[kPelvis];
+    return std::hypot(d.x(), d.y());
+  };
+  EXPECT_NEAR(path(fast), path(slow), 0.02 * path(slow));
+  const auto peak_bw = [](const Motion& m) {
+    const WalkRun r = run(m, kBody);
+    double peak = 0;
+    for (int t = 0; t < r.seq.frames(); ++t) peak = std::max(peak, test::total_force_n(r.seq, t));
+    return peak / r.bw;
+  };
+  const double p_slow = peak_bw(slow), p_fast = peak_bw(fast);
+  EXPECT_GT(p_fast, p_slow + 0.05) << "peak force " << p_slow << " -> " << p_fast << " body weights";
+}
+
 TEST(SimWalking, ProceduralPressuresArePlausible) {
   // Per-frame peaks on 2 cm cells: barefoot walking peaks of 200-500 kPa on
   // fine plates average down over a 4 cm^2 cell (../shared/anthropometry.md).

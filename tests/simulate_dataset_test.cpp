@@ -124,6 +124,21 @@ TEST_F(SimulateDataset, ClipsCsvRowsAndErrors) {
   EXPECT_EQ(one[0].meta.take, 1);
 }
 
+TEST(ClipsAtSpeeds, EveryClipAtEverySpeedAndOneLineErrors) {
+  const auto clips = embedded_clips(1, 1, 2.0, 4);
+  const auto at = clips_at_speeds(clips, {1, 1.5});
+  ASSERT_EQ(at.size(), 2 * clips.size());
+  EXPECT_EQ(at[0].meta.motion_id, clips[0].meta.motion_id);  // speed 1: the clip as it was
+  EXPECT_EQ(at[1].meta.motion_id, clips[0].meta.motion_id + "_x1.5");
+  EXPECT_EQ(at[1].meta.source, clips[0].meta.source + " x1.5");
+  EXPECT_EQ(at[1].speed, 1.5);
+  EXPECT_EQ(at[1].meta.take, clips[0].meta.take);
+  EXPECT_EQ(load_clip(at[1], kFps).size(), 40);  // 2 s played 1.5 x as fast
+  EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {}); }), "speeds: expected at least one speed");
+  EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {0.1}); }), "speeds: 0.1 is not in [0.25, 4]");
+  EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {1, 1}); }), "speeds: 1 given twice");
+}
+
 TEST(SimulateDatasetCategories, FromNames) {
   EXPECT_EQ(category_from_name("/x/subject5_walk_fast.bvh"), "walking");
   EXPECT_EQ(category_from_name("Range_of_motion.bvh"), "rom");

@@ -142,7 +142,7 @@ TEST(TrainPairs, OptionRulesAreTheLibrarys) {
   EXPECT_EQ(error_of(o), "model: a contact head needs the frame architecture, found faithful");
   o = TrainOptions::from_preset("fast");
   o.epochs = 0;
-  EXPECT_EQ(error_of(o), "epochs: 0 is not in [1, 1e+06]");
+  EXPECT_EQ(error_of(o), "epochs: 0 is not in [1, 1000000]");
   // Overrides: the architecture first, then the contact head exactly when contact_weight > 0.
   TrainOverrides v;
   v.arch = Arch::faithful;

@@ -137,10 +137,14 @@ inline std::string fixed_text(double v, int digits = 3) {
   return buf;
 }
 
-// A number for a message: at most 6 significant digits ("1e+308", "nan").
+// A number for a message: whole numbers below 1e15 in full ("1048576"), others
+// to at most 6 significant digits ("0.15", "1e+308", "nan").
 inline std::string number_text(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
+  if (std::abs(v) < 1e15 && v == std::trunc(v))
+    std::snprintf(buf, sizeof buf, "%.0f", v);  // whole numbers in full: 1048576, not 1.04858e+06
+  else
+    std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
 

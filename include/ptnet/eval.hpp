@@ -23,16 +23,22 @@
 //    (1 when both are empty).
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "ptnet/body_spec.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/model_config.hpp"
 #include "ptnet/pressure.hpp"
 #include "ptnet/progress.hpp"
 
 namespace ptnet {
+
+// The binarisation thresholds the metrics accept: any finite kPa >= 0 (the
+// check of binary_r2 and contact_iou, of EvaluationRun and of the CLI).
+inline constexpr Range kThresholdKpaRange{0, HUGE_VAL};
 
 struct MetricOptions {
   double threshold_kpa = kContactKpa;  // binarisation threshold for binary R^2 and IoU

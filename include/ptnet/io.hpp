@@ -49,10 +49,18 @@ void check_regular_input(const std::string& path);
 // alone does not (train --resume rewrites the config.json it read).
 void note_input(const std::string& path);
 
-// The one overwrite rule of every output: throws Error (kind exists,
-// "PATH: exists; pass force to overwrite") if `path` exists and `force` is
-// false.
+// The one wording of an output that exists: Error (kind exists) "PATH:
+// exists; pass force to overwrite", or "... overwrite or ALTERNATIVE" (a
+// model folder: "resume to continue").
+Error exists_error(const std::string& path, const std::string& alternative = "");
+
+// The one overwrite rule of every output: throws exists_error(path) if
+// `path` exists and `force` is false.
 void check_overwrite(const std::string& path, bool force);
+
+// True if folder `path` exists, false if nothing does; throws Error
+// "PATH: exists and is not a folder" otherwise.
+bool existing_folder(const std::string& path);
 
 // Throws Error if `path` exists and `force` is false, if it exists and is not
 // a regular file, if it is an input of this run, or if its folder is missing
@@ -62,6 +70,15 @@ void check_output_path(const std::string& path, bool force);
 // The same for an output folder (a model or report folder): an existing
 // non-folder is an error; an existing non-empty folder needs `force`.
 void check_output_folder(const std::string& path, bool force);
+
+// Creates folder `path` and its missing parents; throws Error (kind io)
+// "PATH: cannot create folder: REASON".
+void make_folder(const std::string& path);
+
+// The outputs `files` of a run to be written into folder `dir` (which may
+// not exist yet), before the run: `dir` is no file (existing_folder) and
+// each file needs `force` if it exists (check_overwrite).
+void check_outputs_in_folder(const std::string& dir, const std::vector<std::string>& files, bool force);
 
 class AtomicFile {
  public:

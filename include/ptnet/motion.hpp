@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ptnet/error.hpp"
 #include "ptnet/paper.hpp"
 
 namespace ptnet {
@@ -108,6 +109,9 @@ struct Motion {
   std::vector<Pose> frames;  // [F]
   int size() const { return int(frames.size()); }
 };
+
+// The frame rates motions are resampled to (MotionOptions::fps, a dataset's fps).
+inline constexpr Range kFpsRange{1, 1000};
 
 struct MotionOptions {
   Units units = Units::automatic;

@@ -33,6 +33,7 @@
 
 #include "ptnet/body_spec.hpp"
 #include "ptnet/data.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
 
@@ -48,7 +49,21 @@ struct ClipSource {
   // Only frames [first_frame, end_frame) of the clip at the dataset's frame
   // rate (end_frame 0: to the end), cut after loading (load_clip).
   int first_frame = 0, end_frame = 0;
+  // Played `speed` times as fast: loaded (or generated) at fps / speed and
+  // played at fps, so the body moves faster or slower and is simulated anew
+  // (its pressure is the changed motion's, not warped maps). clips_at_speeds.
+  double speed = 1;
 };
+
+// Allowed playback speeds of a clip (ClipSource::speed).
+inline constexpr Range kClipSpeedRange{0.25, 4};
+
+// Every clip at every speed of `speeds`, clip-major: time-scale augmentation
+// of a training set. A clip at speed s != 1 is motion_id "<id>_x<s>" (e.g.
+// "06_01_x0.8") with source "<source> x<s>"; at s = 1 it is the clip as it
+// was. Throws Error for no speeds, a repeated speed, or one outside
+// kClipSpeedRange.
+std::vector<ClipSource> clips_at_speeds(const std::vector<ClipSource>& clips, const std::vector<double>& speeds);
 
 // One row of a clips CSV (docs/formats.md): columns file, subject, category,
 // take (required); metres_per_unit, up and activity used when present; other columns
@@ -105,6 +120,12 @@ struct EmbeddedCorpus {
   int takes = 2;        // takes per performer and category
   double seconds = 8;   // seconds per clip
 };
+
+// The sizes embedded_clips accepts (demo and simulate's options read them too).
+struct EmbeddedCorpusRanges {
+  Range performers{1, 100}, takes{1, 10}, seconds{1, 600};
+};
+inline constexpr EmbeddedCorpusRanges kEmbeddedCorpusRanges;
 
 // Loads (BVH) or generates (procedural, at the performer's own height) one
 // clip at `fps`, cut to its frame span. Throws Error naming the file (or a

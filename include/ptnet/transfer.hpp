@@ -16,6 +16,7 @@
 #include <string>
 
 #include "ptnet/body_spec.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/model_config.hpp"
 #include "ptnet/pressure.hpp"
 
@@ -28,6 +29,12 @@ struct TransferOptions {
   std::string device = "cpu";
   bool raw = false;          // true: skip the model's fitted contact threshold
 };
+
+// The values TransferOptions accepts (Transfer's check; the CLI's validators).
+struct TransferOptionsRanges {
+  Range stride{1, 100000}, batch{1, 1 << 20};
+};
+inline constexpr TransferOptionsRanges kTransferOptionsRanges;
 
 class Transfer {
  public:

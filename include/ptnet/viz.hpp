@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,11 +64,11 @@ void write_gif(const std::string& path, const std::vector<Image>& frames,
                const std::vector<int>& delays_cs, bool force);
 
 struct FigureOptions {
-  int cell_px = 7;              // pixels per mat cell
-  double vmax_kpa = 0;          // top of the colour scale; 0 = max of the data, rounded up
-  bool cop = false;             // draw the centre-of-pressure trace up to each frame
-  int frames = 0;               // N evenly spaced frames (0: PNG 6, GIF every frame)
-  std::vector<int> frame_list;  // explicit frame indices (overrides `frames`)
+  int cell_px = 7;                 // pixels per mat cell
+  std::optional<double> vmax_kpa;  // top of the colour scale (> 0); none: max of the data, rounded up
+  bool cop = false;                // draw the centre-of-pressure trace up to each frame
+  std::optional<int> frames;       // N evenly spaced frames (>= 1); none: PNG 6, GIF every frame
+  std::vector<int> frame_list;     // explicit frame indices (overrides `frames`)
 };
 
 struct FigurePanel {

@@ -36,7 +36,7 @@ class TrainOptionsTest(unittest.TestCase):
     def test_ranges_name_the_field(self):
         with self.assertRaises(ValueError) as ctx:
             ptnet.train(self.data, self.out, preset="fast", epochs=0)
-        self.assertEqual(str(ctx.exception), "epochs: 0 is not in [1, 1e+06]")
+        self.assertEqual(str(ctx.exception), "epochs: 0 is not in [1, 1000000]")
         with self.assertRaises(ValueError) as ctx:
             ptnet.train(self.data, self.out, preset="fast", lr=float("nan"))
         self.assertEqual(str(ctx.exception), "lr: nan is not in (0, 10]")
@@ -44,13 +44,27 @@ class TrainOptionsTest(unittest.TestCase):
             ptnet.train(self.data, self.out, preset="nope")
         self.assertEqual(str(ctx.exception), 'preset: expected paper, fast or full, found "nope"')
 
+    def test_every_override_is_a_keyword(self):
+        # Each field of TrainOverrides, as the CLI's flags: micro_batch and
+        # align reach the library's checks; an unknown keyword is a TypeError.
+        with self.assertRaises(ValueError) as ctx:
+            ptnet.train(self.data, self.out, preset="fast", micro_batch=0, mirror=True, align="zoom")
+        self.assertEqual(str(ctx.exception), "micro_batch: 0 is not in [1, 1048576]")
+        with self.assertRaises(ValueError) as ctx:
+            ptnet.train(self.data, self.out, preset="fast", align="tilt")
+        self.assertIn("tilt", str(ctx.exception))
+        with self.assertRaises(TypeError) as ctx:
+            ptnet.train(self.data, self.out, preset="fast", epoch=3)
+        self.assertEqual(str(ctx.exception), "train() got an unexpected keyword argument 'epoch'")
+        self.assertFalse(os.path.exists(self.out))
+
 
 class SimulateOptionsTest(unittest.TestCase):
     def test_the_cli_ranges(self):
         m = ptnet.generate_motion("walking", seconds=1)
         body = ptnet.Body("male", 180, 80)
         for kwargs, message in [({"crosstalk": 0.3}, "crosstalk: 0.3 is not in [0, 0.24]"),
-                                ({"saturation_kpa": 0.0}, "saturation_kpa: 0 is not in (0, 1e+06]"),
+                                ({"saturation_kpa": 0.0}, "saturation_kpa: 0 is not in (0, 1000000]"),
                                 ({"rows": 0}, "rows: 0 is not in [1, 1000]"),
                                 ({"compliance_mm": 0.5}, "compliance_mm: 0.5 is not in [1, 50]"),
                                 ({"placement": "moving"}, "placement 'moving' is not fixed or follow")]:

@@ -209,12 +209,18 @@ void note_input(const std::string& path) {
 
 // ------------------------------------------------------------ outputs
 
-namespace {
-Error exists_error(const std::string& path) {
-  return Error::in(path, "exists; pass " + field_text("force") + " to overwrite",
+Error exists_error(const std::string& path, const std::string& alternative) {
+  return Error::in(path, "exists; pass " + field_text("force") + " to overwrite" +
+                             (alternative.empty() ? "" : " or " + alternative),
                    ErrorKind::exists);
 }
-}  // namespace
+
+bool existing_folder(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return false;
+  if (!fs::is_directory(path, ec)) throw Error::in(path, "exists and is not a folder");
+  return true;
+}
 
 void check_overwrite(const std::string& path, bool force) {
   std::error_code ec;
@@ -236,9 +242,19 @@ void check_output_path(const std::string& path, bool force) {
 
 void check_output_folder(const std::string& path, bool force) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) return;
-  if (!fs::is_directory(path, ec)) throw Error::in(path, "exists and is not a folder");
-  if (!force && !fs::is_empty(path, ec)) throw exists_error(path);
+  if (existing_folder(path) && !force && !fs::is_empty(path, ec)) throw exists_error(path);
+}
+
+void make_folder(const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  if (!fs::is_directory(path))
+    throw Error::in(path, "cannot create folder: " + (ec ? ec.message() : std::string("not a folder")), ErrorKind::io);
+}
+
+void check_outputs_in_folder(const std::string& dir, const std::vector<std::string>& files, bool force) {
+  existing_folder(dir);
+  for (const std::string& f : files) check_overwrite((fs::path(dir) / f).string(), force);
 }
 
 AtomicFile::AtomicFile(std::string path, bool force) : path_(std::move(path)) {

@@ -188,7 +188,10 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
 
 std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds, std::uint64_t seed,
                                        double fps) {
-  if (performers < 1 || takes < 1) throw Error("embedded clips: performers and takes must be >= 1");
+  const EmbeddedCorpusRanges& r = kEmbeddedCorpusRanges;
+  check_range("performers", performers, r.performers);
+  check_range("takes", takes, r.takes);
+  check_range("seconds", seconds, r.seconds);
   std::vector<ClipSource> clips;
   for (int p = 1; p <= performers; ++p)
     for (Category cat : kCategories)
@@ -210,34 +213,66 @@ std::vector<ClipSource> embedded_clips(int performers, int takes, double seconds
   return clips;
 }
 
+std::vector<ClipSource> clips_at_speeds(const std::vector<ClipSource>& clips, const std::vector<double>& speeds) {
+  if (speeds.empty()) throw Error(field_text("speeds") + ": expected at least one speed");
+  for (std::size_t i = 0; i < speeds.size(); ++i) {
+    check_range("speeds", speeds[i], kClipSpeedRange);
+    for (std::size_t j = 0; j < i; ++j)
+      if (speeds[j] == speeds[i]) throw Error(field_text("speeds") + ": " + number_text(speeds[i]) + " given twice");
+  }
+  std::vector<ClipSource> out;
+  out.reserve(clips.size() * speeds.size());
+  for (const ClipSource& c : clips)
+    for (double s : speeds) {
+      ClipSource v = c;
+      v.speed = c.speed * s;
+      if (s != 1) {
+        v.meta.motion_id += "_x" + number_text(s);
+        v.meta.source += " x" + number_text(s);
+      }
+      out.push_back(std::move(v));
+    }
+  return out;
+}
+
 namespace {
 
-// Frames [first_frame, end_frame) of a loaded clip (ClipSource).
+// Frames [first_frame, end_frame) of a loaded clip (ClipSource); the span
+// counts frames of the clip at its own speed, so a clip played at speed s
+// (loaded at fps / s) keeps the frames of [first / s, end / s).
 Motion clip_span(Motion m, const ClipSource& clip) {
   if (clip.first_frame == 0 && clip.end_frame == 0) return m;
   const std::string& where = clip.path.empty() ? clip.meta.motion_id : clip.path;
-  const int end = clip.end_frame > 0 ? clip.end_frame : m.size();
-  if (clip.first_frame < 0 || end > m.size() || clip.first_frame >= end)
+  const auto at_speed = [&](int frame) { return int(std::lround(frame / clip.speed)); };
+  const int first = at_speed(clip.first_frame);
+  const int want_end = clip.end_frame > 0 ? at_speed(clip.end_frame) : m.size();
+  const int end = std::min(want_end, m.size());  // at speed != 1 rounding may pass the last frame by one
+  if (first < 0 || want_end > m.size() + (clip.speed != 1 ? 1 : 0) || first >= end)
     throw Error::in(where, "expected a frame span within 0-" + std::to_string(m.size()) + ", found " +
-                               std::to_string(clip.first_frame) + "-" + std::to_string(end));
-  m.frames = std::vector<Pose>(m.frames.begin() + clip.first_frame, m.frames.begin() + end);
+                               std::to_string(first) + "-" + std::to_string(want_end));
+  m.frames = std::vector<Pose>(m.frames.begin() + first, m.frames.begin() + end);
   return m;
 }
 
 }  // namespace
 
+// A clip at speed s is read at fps / s and played at fps.
 Motion load_clip(const ClipSource& clip, double fps) {
+  check_range("speed", clip.speed, kClipSpeedRange);
+  const double read_fps = fps / clip.speed;
+  Motion m;
   if (clip.path.empty()) {
     GenerateOptions g = clip.procedural;
-    g.fps = fps;
-    Motion m = generate_motion(g);
+    g.fps = read_fps;
+    m = generate_motion(g);
     m.name = clip.meta.motion_id;
-    return clip_span(std::move(m), clip);
+  } else {
+    MotionOptions o = clip.motion;
+    o.fps = read_fps;
+    m = load_motion(clip.path, o);
+    if (m.size() == 0) throw Error::in(clip.path, "no frames");
   }
-  MotionOptions o = clip.motion;
-  o.fps = fps;
-  Motion m = load_motion(clip.path, o);
-  if (m.size() == 0) throw Error::in(clip.path, "no frames");
+  m.fps *= clip.speed;  // the frames read at fps / speed play at fps (a file's own rate kept when it is fps)
   return clip_span(std::move(m), clip);
 }
 

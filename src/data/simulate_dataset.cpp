@@ -27,6 +27,10 @@ std::string default_config(const std::vector<ClipSource>& clips, const std::vect
   j["seed"] = o.seed;
   j["fps"] = o.fps;
   j["clips"] = clips.size();
+  std::vector<double> speeds;  // recorded only when a clip is played at another speed
+  for (const ClipSource& c : clips)
+    if (std::find(speeds.begin(), speeds.end(), c.speed) == speeds.end()) speeds.push_back(c.speed);
+  if (speeds.size() > 1 || (!speeds.empty() && speeds[0] != 1)) j["speeds"] = speeds;
   j["bodies"] = bodies.size();
   j["mat"] = {{"rows", s.mat.rows}, {"cols", s.mat.cols}, {"pitch_m", s.mat.pitch_m}};
   j["placement"] = placement_name(s.placement);
@@ -51,8 +55,7 @@ int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>&
               const SimulateDatasetOptions& options) {
   if (clips.empty()) throw Error("simulate: no clips to simulate");
   if (bodies.empty()) throw Error("simulate: no bodies to simulate on");
-  if (!(options.fps >= 1 && options.fps <= 1000))
-    throw Error("simulate: fps must be in [1, 1000], found " + number_text(options.fps));
+  check_range("fps", options.fps, kFpsRange);
   check_output_path(out_path, options.force);  // before any work
   if (options.threads < 0 || options.threads > max_threads())
     throw Error("simulate: threads must be in 0-" + std::to_string(max_threads()) + ", found " +

@@ -20,7 +20,7 @@ namespace {
 // A binarisation threshold: NaN would compare false everywhere (every cell
 // "no contact", R^2 1) and a negative one marks every cell as contact.
 void check_threshold(double threshold_kpa, const char* what) {
-  if (!(threshold_kpa >= 0) || !std::isfinite(threshold_kpa))
+  if (!kThresholdKpaRange.contains(threshold_kpa))
     throw Error(std::string(what) + ": threshold_kpa: expected a finite number >= 0, found " +
                 number_text(threshold_kpa));
 }

@@ -110,10 +110,7 @@ TestPair pair_of(const EvalRow& r) {
 
 std::vector<std::string> write_report(const Dataset& dataset, const std::vector<EvalRow>& rows,
                                       const TransferFn& model, const ReportOptions& options) {
-  std::error_code ec;
-  fs::create_directories(options.out_dir, ec);
-  if (!fs::is_directory(options.out_dir))
-    throw Error::in(options.out_dir, "cannot create the report folder", ErrorKind::io);
+  make_folder(options.out_dir);
   const auto path = [&](const std::string& name) { return (fs::path(options.out_dir) / name).string(); };
   // Refuse before writing anything, so a refused run leaves no partial report.
   std::vector<std::string> names{"metrics.csv", "metrics.json", "index.html"};

@@ -9,8 +9,7 @@
 namespace ptnet {
 
 EvaluationResult run_evaluation(const EvaluationRun& run) {
-  if (!(run.threshold_kpa >= 0))
-    throw Error(field_text("threshold_kpa") + ": expected a non-negative kPa value");
+  check_range("threshold_kpa", run.threshold_kpa, kThresholdKpaRange);
   const Dataset dataset = Dataset::open(run.data_path);
   TransferOptions to;
   to.stride = run.stride;

@@ -152,9 +152,8 @@ void import_state_dict(const std::string& weights_path, const std::string& confi
     }
     check_weight_values(net, weights_path);
   }
+  make_folder(out_dir);
   std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error::in(out_dir, "cannot create folder: " + ec.message(), ErrorKind::io);
   const ModelFiles out(out_dir);
   for (const char* stale : {ModelFiles::kCheckpoint, ModelFiles::kHistory}) fs::remove(out.path(stale), ec);
   dir.path = out_dir;

@@ -55,8 +55,8 @@ struct Transfer::Impl {
 
 Transfer::Transfer(const std::string& model_dir, const TransferOptions& options)
     : impl_(std::make_unique<Impl>()) {
-  if (options.stride < 1) throw Error("transfer: stride must be >= 1, found " + std::to_string(options.stride));
-  if (options.batch < 1) throw Error("transfer: batch must be >= 1, found " + std::to_string(options.batch));
+  check_range("stride", options.stride, kTransferOptionsRanges.stride);
+  check_range("batch", options.batch, kTransferOptionsRanges.batch);
   impl_->options = options;
   impl_->model = load_model(model_dir, options.device, options.threads, options.batch);
 }

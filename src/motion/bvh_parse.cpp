@@ -171,29 +171,10 @@ class HierarchyParser {
     for (int a = 0; a < 3; ++a) bvh_.joints[index].offset[a] = lex_.number("number (OFFSET)");
 
     t = lex_.next();
+    bvh_.joints[index].first_channel = bvh_.channel_count;
     if (t.text == "CHANNELS") {
-      Token n = lex_.next();
-      int count = -1;
-      auto r = std::from_chars(n.text.data(), n.text.data() + n.text.size(), count);
-      if (r.ec != std::errc() || r.ptr != n.text.data() + n.text.size() ||
-          (count != 0 && count != 3 && count != 6))
-        lex_.fail(n.line, "a channel count of 0, 3 or 6", n.text);
-      std::vector<Channel> channels;
-      for (int i = 0; i < count; ++i) {
-        Token c = lex_.next();
-        Channel ch;
-        if (!channel_from_name(c.text, ch))
-          lex_.fail(c.line, "a channel name (X|Y|Z + position|rotation)", c.text);
-        for (Channel seen : channels)
-          if (seen == ch) lex_.fail(c.line, "a channel not listed before on this joint", c.text);
-        channels.push_back(ch);
-      }
-      bvh_.joints[index].channels = std::move(channels);
-      bvh_.joints[index].first_channel = bvh_.channel_count;
-      bvh_.channel_count += count;
+      channels(index);
       t = lex_.next();
-    } else {
-      bvh_.joints[index].first_channel = bvh_.channel_count;
     }
 
     for (;; t = lex_.next()) {
@@ -211,6 +192,26 @@ class HierarchyParser {
   }
 
  private:
+  // At the token after CHANNELS: the count and the names of joint `index`'s channels.
+  void channels(int index) {
+    Token n = lex_.next();
+    int count = -1;
+    auto r = std::from_chars(n.text.data(), n.text.data() + n.text.size(), count);
+    if (r.ec != std::errc() || r.ptr != n.text.data() + n.text.size() || (count != 0 && count != 3 && count != 6))
+      lex_.fail(n.line, "a channel count of 0, 3 or 6", n.text);
+    std::vector<Channel> list;
+    for (int i = 0; i < count; ++i) {
+      Token c = lex_.next();
+      Channel ch;
+      if (!channel_from_name(c.text, ch)) lex_.fail(c.line, "a channel name (X|Y|Z + position|rotation)", c.text);
+      for (Channel seen : list)
+        if (seen == ch) lex_.fail(c.line, "a channel not listed before on this joint", c.text);
+      list.push_back(ch);
+    }
+    bvh_.joints[index].channels = std::move(list);
+    bvh_.channel_count += count;
+  }
+
   void end_site(int index) {
     Token t = lex_.next();
     if (t.text != "{") lex_.fail(t.line, "{", t.text);

@@ -87,8 +87,7 @@ double FootTrack::swing_activity(double t, double ramp) const {
 Motion generate_motion(const GenerateOptions& options) {
   if (!(options.seconds > 0) || options.seconds > 3600)
     throw Error("generate_motion: expected seconds in (0, 3600], found " + number_text(options.seconds));
-  if (!(options.fps >= 1) || options.fps > 1000)
-    throw Error("generate_motion: expected fps in [1, 1000], found " + number_text(options.fps));
+  check_range("fps", options.fps, kFpsRange);
   if (options.performer < 1 || options.take < 1)
     throw Error("generate_motion: expected performer and take >= 1, found " +
                 std::to_string(options.performer) + " and " + std::to_string(options.take));

@@ -77,6 +77,32 @@ Communicator::Communicator(int rank, int size, std::unique_ptr<Impl> impl)
     : rank_(rank), size_(size), impl_(std::move(impl)) {}
 Communicator::~Communicator() = default;
 
+// The Gloo process group over the joined store: on GLOO_SOCKET_IFNAME's
+// interface, else loopback for a loopback rendezvous, else the default device.
+static c10::intrusive_ptr<c10d::ProcessGroupGloo> gloo_group(const c10::intrusive_ptr<c10d::Store>& store,
+                                                              const Address& a, const DistOptions& o,
+                                                              std::chrono::milliseconds timeout) {
+  auto options = c10d::ProcessGroupGloo::Options::create(timeout);
+  if (const char* iface = std::getenv("GLOO_SOCKET_IFNAME"); iface && *iface)
+    options->devices.push_back(c10d::ProcessGroupGloo::createDeviceForInterface(iface));
+  else if (a.tcp && is_loopback(a.host))
+    options->devices.push_back(c10d::ProcessGroupGloo::createDeviceForHostname("127.0.0.1"));
+  else
+    options->devices.push_back(c10d::ProcessGroupGloo::createDefaultDevice());
+  options->threads = 1;  // one collective at a time
+  auto prefixed = c10::make_intrusive<c10d::PrefixStore>("gloo", store);
+  return c10::make_intrusive<c10d::ProcessGroupGloo>(prefixed, o.rank, o.world_size, options);
+}
+
+// The options of a run of more than one rank.
+static void check_world(const DistOptions& o) {
+  if (o.rendezvous.empty())
+    throw Error(field_text("rendezvous") + ": needed with " + field_text("world_size") + " " +
+                std::to_string(o.world_size));
+  if (!(o.timeout_s > 0))
+    throw Error(field_text("dist_timeout_s") + ": must be > 0, found " + number_text(o.timeout_s));
+}
+
 std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
   if (o.world_size < 1)
     throw Error(field_text("world_size") + ": must be >= 1, found " + std::to_string(o.world_size));
@@ -84,11 +110,7 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
     throw Error(field_text("rank") + ": must be in 0-" + std::to_string(o.world_size - 1) +
                 ", found " + std::to_string(o.rank));
   if (o.world_size == 1) return std::unique_ptr<Communicator>(new Communicator(0, 1, nullptr));
-  if (o.rendezvous.empty())
-    throw Error(field_text("rendezvous") + ": needed with " + field_text("world_size") + " " +
-                std::to_string(o.world_size));
-  if (!(o.timeout_s > 0))
-    throw Error(field_text("dist_timeout_s") + ": must be > 0, found " + number_text(o.timeout_s));
+  check_world(o);
   const Address a = parse_rendezvous(o.rendezvous);
   // c10d logs its connection retries and timeouts through glog on stderr;
   // every failure here becomes one Error line instead.
@@ -148,16 +170,7 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
                 " could not join within " + secs + " (" + short_detail(e) + ")");
   }
   try {
-    auto options = c10d::ProcessGroupGloo::Options::create(impl->timeout);
-    if (const char* iface = std::getenv("GLOO_SOCKET_IFNAME"); iface && *iface)
-      options->devices.push_back(c10d::ProcessGroupGloo::createDeviceForInterface(iface));
-    else if (a.tcp && is_loopback(a.host))
-      options->devices.push_back(c10d::ProcessGroupGloo::createDeviceForHostname("127.0.0.1"));
-    else
-      options->devices.push_back(c10d::ProcessGroupGloo::createDefaultDevice());
-    options->threads = 1;  // one collective at a time
-    auto prefixed = c10::make_intrusive<c10d::PrefixStore>("gloo", impl->store);
-    impl->group = c10::make_intrusive<c10d::ProcessGroupGloo>(prefixed, o.rank, o.world_size, options);
+    impl->group = gloo_group(impl->store, a, o, impl->timeout);
   } catch (const std::exception& e) {
     throw Error("distributed: " + me + " could not connect to the other ranks within " + secs + " (" +
                 short_detail(e) + ")");

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;
@@ -16,21 +17,14 @@ void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
       throw Error::in(dir, "no model folder to resume", ErrorKind::not_found);
     return;
   }
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec)) throw Error::in(dir, "exists and is not a folder");
-    const bool empty = fs::is_empty(dir, ec);
-    if (!empty && !o.force)
-      throw Error::in(dir,
-                      "exists; pass " + field_text("force") + " to overwrite or " +
-                          field_text("resume") + " to continue",
-                      ErrorKind::exists);
+  if (existing_folder(dir)) {
+    if (!o.force && !fs::is_empty(dir, ec)) throw exists_error(dir, field_text("resume") + " to continue");
     for (const char* f : ModelFiles::kAll) fs::remove(ModelFiles(dir).path(f), ec);
   } else {
     fs::path parent = fs::path(dir).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec))
       throw Error::in(dir, "folder " + parent.string() + " does not exist", ErrorKind::not_found);
-    if (!fs::create_directory(dir, ec))
-      throw Error::in(dir, "cannot create folder: " + ec.message(), ErrorKind::io);
+    make_folder(dir);
   }
 }
 

@@ -148,7 +148,8 @@ std::vector<int> figure_frames(const FigureOptions& opt, int frames, int default
     }
     return out;
   }
-  int n = opt.frames > 0 ? opt.frames : default_count;
+  if (opt.frames && *opt.frames < 1) throw Error(field_text("frames") + ": expected at least 1, found " + std::to_string(*opt.frames));
+  const int n = opt.frames.value_or(default_count);
   if (n <= 0 || n >= frames) {
     for (int t = 0; t < frames; ++t) out.push_back(t);
     return out;
@@ -158,7 +159,10 @@ std::vector<int> figure_frames(const FigureOptions& opt, int frames, int default
 }
 
 double figure_vmax(const std::vector<FigurePanel>& panels, const FigureOptions& opt) {
-  if (opt.vmax_kpa > 0) return opt.vmax_kpa;
+  if (opt.vmax_kpa) {
+    if (!(*opt.vmax_kpa > 0)) throw Error(field_text("vmax_kpa") + ": expected a positive kPa, found " + number_text(*opt.vmax_kpa));
+    return *opt.vmax_kpa;
+  }
   float peak = 0;
   for (const auto& p : panels)
     for (float v : p.sequence->kpa) peak = std::max(peak, v);
@@ -267,7 +271,7 @@ std::vector<Image> render_animation(const std::vector<FigurePanel>& panels, cons
   const Style st{s, figure_vmax(panels, opt), kGifLevels};
   std::vector<int> frames = figure_frames(opt, min_frames(panels), 0);
   // GIF viewers clamp delays under 2/100 s: above 50 fps, keep every k-th frame.
-  if (opt.frame_list.empty() && opt.frames <= 0 && fps > 50) {
+  if (opt.frame_list.empty() && !opt.frames && fps > 50) {
     const int k = int(std::ceil(fps / 50));
     std::vector<int> kept;
     for (size_t i = 0; i < frames.size(); i += k) kept.push_back(frames[i]);
