@@ -109,17 +109,33 @@ class FrameNet(nn.Module):
 
 
 def frames_with_context(x, context):
-    """x [N,T,H,W] -> [N*T, 1 + 2 context, H, W], the window's end frames repeated."""
-    n, t, h, w = x.shape
+    """x [N, T + 2 context, H, W] -> [N*T, 1 + 2 context, H, W]: each of the T
+    centre frames with its `context` neighbours on each side (frame_inputs)."""
+    n, t, h, w = x.shape[0], x.shape[1] - 2 * context, x.shape[2], x.shape[3]
     if context == 0:
         return x.reshape(n * t, 1, h, w)
-    padded = torch.cat([x[:, :1].expand(n, context, h, w), x, x[:, t - 1:].expand(n, context, h, w)], 1)
-    u = padded.unfold(1, 2 * context + 1, 1)                                # [N,T,H,W,K]
+    u = x.unfold(1, 2 * context + 1, 1)                                     # [N,T,H,W,K]
     return u.permute(0, 1, 4, 2, 3).reshape(n * t, 2 * context + 1, h, w)
 
 
+def input_margin(a):
+    """Frames of input beyond the output at each end of a window (input_margin):
+    a frame network's context, 0 for the window networks. a: the "architecture" section."""
+    return a.get("context", 0) if a["arch"] == "frame" else 0
+
+
+def with_margin(frames, margin):
+    """A sequence [T, H, W] with `margin` copies of its first and last frame
+    at each end: [T + 2 margin, H, W], the input of a frame model with context."""
+    if margin == 0:
+        return frames
+    return torch.cat([frames[:1].expand(margin, *frames.shape[1:]), frames,
+                      frames[-1:].expand(margin, *frames.shape[1:])], 0)
+
+
 class PressureTransferNet(nn.Module):
-    """PressureTransferNetImpl: x [N,T,H,W] normalised pressure, source and
+    """PressureTransferNetImpl: x [N,T+2 context,H,W] normalised pressure (frame;
+    [N,T,H,W] otherwise), source and
     target [N,A] normalised attributes -> [N,T,H,W] normalised pressure >= 0.
 
     cfg: a config.json dict (read_config) or its "architecture" section."""
@@ -157,12 +173,13 @@ class PressureTransferNet(nn.Module):
         """(pressure before the output ReLU, contact logits or None), both [N,T,H,W]."""
         n = x.shape[0]
         if self.arch == "frame":
-            t = x.shape[1]
+            c = self.context
+            t = x.shape[1] - 2 * c                                              # x holds T + 2 context frames
             conditions = torch.cat([source, target], 1).repeat_interleave(t, 0)   # [N*T, 2A]
-            out = self.frame(frames_with_context(x, self.context), conditions)   # [N*T,1+contact,H,W]
+            out = self.frame(frames_with_context(x, c), conditions)             # [N*T,1+contact,H,W]
             shape = (n, t, x.shape[2], x.shape[3])
             contact = out[:, 1].reshape(shape) if self.contact else None
-            return x + out[:, 0].reshape(shape), contact
+            return x[:, c:c + t] + out[:, 0].reshape(shape), contact
         skips = self.arch in ("skip", "residual")
         s = [pooled_size(self.rows, self.cols, k) for k in range(POOL_LEVELS + 1)]
         e1 = torch.relu(self.bn1(self.conv1(x)))                                # [N,C1,H,W]
@@ -382,7 +399,8 @@ def transfer(net, cfg, pressure, source, target, stride=5, raw=False, batch=64):
         x = zoom_about_centre(x, s, tw / sw / (s * s))
     starts = window_starts(t, k, stride)
     scale = n["pressure_scale_kpa"]
-    inp = torch.from_numpy(x) * float(np.float32(1.0 / scale))                 # [T,H,W] normalised
+    m = input_margin(a)                                                       # context frames each side
+    inp = with_margin(torch.from_numpy(x) * float(np.float32(1.0 / scale)), m)  # [T+2m,H,W] normalised
     total = torch.zeros(x.shape, dtype=torch.float32)
     cover = torch.zeros(t, dtype=torch.float32)
     sa = torch.from_numpy(attributes(cfg, source)).view(1, ATTRIBUTES)
@@ -390,7 +408,7 @@ def transfer(net, cfg, pressure, source, target, stride=5, raw=False, batch=64):
     with torch.no_grad():
         for b in range(0, len(starts), batch):
             chunk = starts[b:b + batch]
-            windows = torch.stack([inp[s:s + k] for s in chunk])               # [n,K,H,W]
+            windows = torch.stack([inp[s:s + k + 2 * m] for s in chunk])       # [n,K+2m,H,W]
             s_n, t_n = sa.expand(len(chunk), ATTRIBUTES), ta.expand(len(chunk), ATTRIBUTES)
             y = net(windows, s_n, t_n)
             if a.get("mirror", False):

@@ -146,7 +146,7 @@ TEST(ModelInference, FoldedEqualsModuleEveryArchitecture) {
     const ModelConfig c = small(arch);
     PressureTransferNet net = random_net(c);
     InferenceNet fast(net);
-    auto x = torch::rand({3, c.window, c.rows, c.cols});
+    auto x = torch::rand({3, c.window + 2 * input_margin(c), c.rows, c.cols});  // frame: its context too
     auto one = torch::randn({1, 3}).expand({3, 3}).contiguous();
     auto mixed = torch::randn({3, 3});
     auto other = torch::randn({3, 3});
@@ -194,7 +194,7 @@ TEST(ModelInference, LargeBatchesRunInChunksWithTheSameResult) {
     const ModelConfig c = small(arch);
     PressureTransferNet net = random_net(c);
     InferenceNet fast(net);
-    auto x = torch::rand({19, c.window, c.rows, c.cols});  // 8 + 8 + 3 windows
+    auto x = torch::rand({19, c.window + 2 * input_margin(c), c.rows, c.cols});  // 8 + 8 + 3 windows
     auto a = torch::randn({1, 3}).expand({19, 3});
     auto mixed = torch::randn({19, 3});
     torch::NoGradGuard no_grad;

@@ -162,26 +162,33 @@ TEST(ModelNet, ConfigValidation) {
 
 TEST(ModelNet, FrameArchIsPerFrameAndStartsAsItsInput) {
   // Untrained, the frame network is its input (zero-initialised head and FiLM).
-  // Its output for a frame depends only on that frame and its context: the
-  // same frame in two windows of different lengths gives the same output, and
-  // after training steps the target attributes change the output.
+  // Its input window carries `context` frames beyond each end: 5 frames in,
+  // 3 out. Its output for a frame depends only on that frame and its context:
+  // the same frame in two windows of different lengths gives the same output;
+  // after training steps the target attributes change the output, and so do
+  // the context frames (the network reads its neighbours).
   torch::manual_seed(4);
   ModelConfig c = small(Arch::frame);
-  c.window = 5;
+  c.window = 3;
   c.context = 1;
+  ASSERT_EQ(input_margin(c), 1);
   PressureTransferNet net(c);
   auto x = torch::rand({2, 5, 80, 28});
   auto a = torch::randn({2, 3});
   {
     net->eval();
     torch::NoGradGuard no_grad;
-    EXPECT_EQ((net->forward(x, a, a.flip(0)) - x).abs().max().item<float>(), 0.0f);
+    auto y = net->forward(x, a, a.flip(0));
+    ASSERT_EQ(y.sizes(), (std::vector<int64_t>{2, 3, 80, 28}));
+    EXPECT_EQ((y - x.narrow(1, 1, 3)).abs().max().item<float>(), 0.0f);
   }
+  // Truth that needs the context: each frame plus its next neighbour.
+  auto truth = x.narrow(1, 1, 3) + 0.5 * x.narrow(1, 2, 3);
   net->train();
   torch::optim::Adam opt(net->parameters(), torch::optim::AdamOptions(1e-2));
   for (int i = 0; i < 5; ++i) {
     opt.zero_grad();
-    auto loss = torch::mse_loss(net->forward(x, a, a.flip(0)), x * (1 + a.flip(0).select(1, 2).view({2, 1, 1, 1})));
+    auto loss = torch::mse_loss(net->forward(x, a, a.flip(0)), truth * (1 + a.flip(0).select(1, 2).view({2, 1, 1, 1})));
     loss.backward();
     opt.step();
   }
@@ -189,21 +196,26 @@ TEST(ModelNet, FrameArchIsPerFrameAndStartsAsItsInput) {
   torch::NoGradGuard no_grad;
   auto y = net->forward(x, a, a.flip(0));
   EXPECT_GT((y - net->forward(x, a, a)).abs().max().item<float>(), 1e-4f);  // target attributes matter
-  // Frames 1..3 have their whole context inside both windows.
-  auto inner = net->forward_raw(x.narrow(1, 0, 5), a, a.flip(0)).narrow(1, 1, 3);
-  ModelConfig c3 = c;
-  c3.window = 3;
-  PressureTransferNet n3(c3);
+  auto later = x.clone();
+  later.narrow(1, 4, 1).mul_(3.0);  // only frame 4: the context of output frame 2
+  auto moved = net->forward(later, a, a.flip(0));
+  EXPECT_GT((moved.narrow(1, 2, 1) - y.narrow(1, 2, 1)).abs().max().item<float>(), 1e-4f);  // it reads its context
+  EXPECT_EQ((moved.narrow(1, 0, 2) - y.narrow(1, 0, 2)).abs().max().item<float>(), 0.0f);  // and nothing else
+  // Output frame 1 (input frame 2) from a window of one: frames 1..3 in.
+  ModelConfig c1 = c;
+  c1.window = 1;
+  PressureTransferNet n1(c1);
   torch::serialize::OutputArchive ar;
   write_weights(net, ar);
   std::stringstream buf;
   ar.save_to(buf);
   torch::serialize::InputArchive in;
   in.load_from(buf);
-  read_weights(n3, in, "memory");
-  n3->eval();
-  auto middle = n3->forward_raw(x.narrow(1, 1, 3), a, a.flip(0)).narrow(1, 1, 1);
-  EXPECT_LT((middle - inner.narrow(1, 1, 1)).abs().max().item<float>(), 1e-5f);
+  read_weights(n1, in, "memory");
+  n1->eval();
+  auto middle = n1->forward_raw(x.narrow(1, 1, 3), a, a.flip(0));
+  EXPECT_LT((middle - net->forward_raw(x, a, a.flip(0)).narrow(1, 1, 1)).abs().max().item<float>(), 1e-5f);
+  EXPECT_THROW(net->forward(x.narrow(1, 0, 2), a, a), c10::Error);  // 2 frames: none inside a context of 1
 }
 
 TEST(ModelNet, ContactHeadZeroesCellsOutOfContactAndLiftsTheRest) {

@@ -20,9 +20,10 @@
 //
 // Arch::frame (ours) is a different network behind the same interface
 // (FrameNetImpl below): each of the T frames of a window goes through a
-// conditional U-Net on its own, with `context` frames on each side (replicated
-// at the window's ends) as extra input channels, and the result is added to
-// the frame. Every convolution is followed by BatchNorm (no affine) and a
+// conditional U-Net on its own, with `context` frames on each side as extra
+// input channels, and the result is added to the frame. Its input window
+// carries those neighbours: x [N, T + 2 context, H, W] -> [N, T, H, W]
+// (input_margin, model_config.hpp; with_margin pads a whole sequence). Every convolution is followed by BatchNorm (no affine) and a
 // FiLM modulation (1 + gamma, beta) computed by a small MLP from the source
 // and target attributes, so the body attributes act at every scale:
 //   enc0 K->C1 (H x W), pool, enc1 C1->C2 (H1 x W1), pool, enc2 C2->C3 and
@@ -67,8 +68,10 @@ class PressureTransferNetImpl : public torch::nn::Module {
  public:
   explicit PressureTransferNetImpl(const ModelConfig& config);
 
-  // x [N, T, H, W] normalised pressure; source, target [N, A] normalised
-  // attributes -> [N, T, H, W] normalised pressure, >= 0.
+  // x [N, T + 2 m, H, W] normalised pressure (m = input_margin(config):
+  // the context frames before the first and after the last output frame);
+  // source, target [N, A] normalised attributes -> [N, T, H, W] normalised
+  // pressure, >= 0.
   torch::Tensor forward(const torch::Tensor& x, const torch::Tensor& source,
                         const torch::Tensor& target);
   // The same before the output ReLU ([N, T, H, W], any sign): training uses
@@ -124,7 +127,8 @@ class InferenceNet {
  public:
   explicit InferenceNet(const PressureTransferNet& net,  // net in eval mode
                         MemoryLayout layout = MemoryLayout::automatic);
-  // x [N, T, H, W], source, target [N, A] -> [N, T, H, W] normalised pressure >= 0.
+  // x [N, T + 2 m, H, W], source, target [N, A] -> [N, T, H, W] normalised
+  // pressure >= 0 (m = input_margin, as the module's forward).
   torch::Tensor forward(const torch::Tensor& x, const torch::Tensor& source, const torch::Tensor& target);
   const ModelConfig& config() const { return config_; }
 
@@ -145,6 +149,15 @@ class InferenceNet {
   std::vector<float> pair_key_;   // the (source, target) attributes folded_ is for
   std::vector<Layer> folded_;     // conv0-5 with BN and FiLM folded
 };
+
+// Arch::frame's input frames: x [N, T + 2 context, H, W] -> [N*T, 1 + 2
+// context, H, W], each of the T centre frames with `context` neighbours on
+// each side (the network's first layer reads them as channels).
+torch::Tensor frame_inputs(const torch::Tensor& x, int context);
+// A whole sequence [T, H, W] with `margin` copies of its first frame before
+// and of its last after: [T + 2 margin, H, W], the input that gives every
+// frame of the sequence its context.
+torch::Tensor with_margin(const torch::Tensor& frames, int margin);
 
 // ModelConfig::mirror: (forward(x) + mirror(forward(mirror(x)))) / 2, mirror
 // the flip of the last dimension (the mat's columns). `forward` maps

@@ -77,7 +77,7 @@ struct ModelConfig {
   std::array<int, 3> channels = kPaperChannels;  // conv widths of encoder blocks 1-3
   int hidden = kHidden;                    // FC after the flattened conv features
   int latent = kLatent;                    // FC after concatenating the source attributes
-  int context = 0;                         // Arch::frame: neighbouring frames on each side as input
+  int context = 0;                         // Arch::frame: neighbouring frames on each side as input (input_margin)
   // Arch::frame: a second output channel, the logit of "this cell is in
   // contact" (trained with a cross-entropy loss beside the pressure loss); the
   // output is 0 where the logit is < 0 and at least the data's smallest
@@ -96,6 +96,12 @@ struct ModelConfig {
     return c;
   }
 };
+
+// Frames of input beyond the output at each end of a window: an Arch::frame
+// network reads `context` frames before and after every frame it transfers,
+// so its input window is window + 2 margin frames (the sequence's end frames
+// repeated where it has none) and its output the window.
+inline int input_margin(const ModelConfig& c) { return c.arch == Arch::frame ? c.context : 0; }
 
 // The values validate() accepts (`ptnet train`'s validators read them too).
 struct ModelConfigRanges {

@@ -35,8 +35,9 @@ struct StreamOptions {
 
 class Stream {
  public:
-  // Throws Error as Transfer (model folder, weights), and for a source or
-  // target body out of range.
+  // Throws Error as Transfer (model folder, weights), for a source or target
+  // body out of range, and for a model that reads frames ahead (context > 0:
+  // a stream has no future frames).
   Stream(const std::string& model_dir, const BodySpec& source, const BodySpec& target,
          const StreamOptions& options = {});
   ~Stream();

@@ -215,7 +215,8 @@ def _window_net(net, x, source, target):
 def _frame_net(net, x, source, target):
     """PressureTransferNet.forward for the frame network."""
     f = net.frame
-    n, t, h, w = x.v.shape
+    c = net.context
+    n, t, h, w = x.v.shape[0], x.v.shape[1] - 2 * c, x.v.shape[2], x.v.shape[3]  # x holds T + 2 context frames
     film = _linear(_relu(_linear(_cat([source, target]).map(lambda c: c.repeat_interleave(t, 0)), f.film1)), f.film2)
 
     def block(i, inp):  # relu(norm(conv(x)) (1 + gamma) + beta)
@@ -229,7 +230,7 @@ def _frame_net(net, x, source, target):
         return _relu(Bounded(y.v * g.v + beta.v, s, g.v.abs() * y.f + (y.v.abs() + y.f) * g.f + beta.f))
 
     up = lambda b, like: b.map(lambda c: F.interpolate(c, size=like.v.shape[2:], mode="nearest"))
-    e0 = block(0, x.map(lambda c: pt.frames_with_context(c, net.context)))
+    e0 = block(0, x.map(lambda v: pt.frames_with_context(v, c)))
     e1 = block(1, _pool(e0))
     e2 = block(2, _pool(e1))
     m = block(3, e2)
@@ -237,12 +238,12 @@ def _frame_net(net, x, source, target):
     d0 = block(5, _add(_conv(up(d1, e0), f.lateral0), e0))
     out = _conv(d0, f.head)
     shape = (n, t, h, w)
-    pressure = _add(x, out.map(lambda c: c[:, 0].reshape(shape)))
+    pressure = _add(x.map(lambda v: v[:, c:c + t]), out.map(lambda v: v[:, 0].reshape(shape)))
     if not net.contact:
         return _relu(pressure)
     p = _relu(pressure)
     p = Bounded(torch.clamp_min(p.v, float(net.contact_floor)), p.s, p.f)
-    return _keep_where_positive(out.map(lambda c: c[:, 1].reshape(shape)), p)
+    return _keep_where_positive(out.map(lambda v: v[:, 1].reshape(shape)), p)
 
 
 def network_bound(net64, x, source, target):
@@ -274,8 +275,11 @@ def transfer_bound(net, cfg, pressure, source, target, stride=5, raw=False):
         x, size = (pt.zoom_about_centre(y, s, gain, dtype=np.float64) for y in (x, size))
     t = x.shape[0]
     starts = pt.window_starts(t, k, stride)
-    stack = lambda y: torch.stack([torch.from_numpy(y / scale)[i:i + k] for i in starts])  # [N,K,H,W]
-    windows = Bounded(stack(x), math.sqrt(12) * U * stack(size), torch.zeros(len(starts), k, *x.shape[1:]).double())
+    m = pt.input_margin(a)  # each window's input holds m context frames at each end
+    stack = lambda y: torch.stack([pt.with_margin(torch.from_numpy(y / scale), m)[i:i + k + 2 * m]
+                                   for i in starts])  # [N,K+2m,H,W]
+    windows = Bounded(stack(x), math.sqrt(12) * U * stack(size),
+                      torch.zeros(len(starts), k + 2 * m, *x.shape[1:]).double())
 
     def attributes(body):
         v = torch.from_numpy(pt.attributes(cfg, body, dtype=np.float64)).view(1, pt.ATTRIBUTES)

@@ -58,7 +58,9 @@ class TorchTest(unittest.TestCase):
                     s = self.target[1] / self.source.height_cm
                     x = ptnet.zoom_about_centre(x, s, ptnet.body_gain(self.source.height_cm, self.source.weight_kg,
                                                                       self.target[1], self.target[2]))
-                windows = torch.from_numpy(x / np.float32(scale)).reshape(-1, k, *x.shape[1:])
+                m = self.pt.input_margin(cfg["architecture"])  # each window's context frames beyond its ends
+                padded = self.pt.with_margin(torch.from_numpy(x / np.float32(scale)), m)
+                windows = torch.stack([padded[s:s + k + 2 * m] for s in range(0, len(x), k)])  # [n,K+2m,H,W]
                 n = windows.shape[0]
                 sa = torch.from_numpy(self.pt.attributes(cfg, self.source)).expand(n, 3)
                 ta = torch.from_numpy(self.pt.attributes(cfg, self.target)).expand(n, 3)

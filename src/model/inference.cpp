@@ -1,7 +1,7 @@
 // InferenceNet: a trained PressureTransferNet for inference only (model.hpp).
 //
 // Dimension legend: N windows, T window frames, M = N x T frames (Arch::frame),
-// K = 1 + 2 context input frames, H x W mat cells, A = 3 attributes,
+// K = 1 + 2 context input frames (x holds T + 2 context), H x W mat cells, A = 3 attributes,
 // C1..C3 conv widths, F = FiLM width (gamma and beta of every block).
 //
 // What it skips against the module's forward() in eval mode:
@@ -55,22 +55,12 @@ std::pair<torch::Tensor, torch::Tensor> norm_affine(const Named& n, const std::s
   return {scale, shift};
 }
 
-// Arch::frame's input frames: x [N,T,H,W] -> [M,K,H,W], each frame with
-// `context` neighbours on each side (the window's end frames repeated).
-torch::Tensor frame_inputs(const torch::Tensor& x, int context) {
-  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);
-  if (context == 0) return x.reshape({n * t, 1, h, w});
-  auto padded = torch::cat({x.narrow(1, 0, 1).expand({n, context, h, w}), x,
-                            x.narrow(1, t - 1, 1).expand({n, context, h, w})}, 1);
-  return padded.unfold(1, 2 * context + 1, 1).permute({0, 1, 4, 2, 3}).reshape({n * t, 2 * context + 1, h, w});
-}
-
 // Arch::frame's output, one pass over the cells: ReLU(frame + correction),
 // and with a contact head 0 where the logit is < 0, else at least `floor`
 // (PressureTransferNetImpl::contact_output). x [N,T,H,W]; out [M,1+contact,H,W]
 // (correction, logit) -> [N,T,H,W].
 torch::Tensor frame_outputs(const torch::Tensor& x, const torch::Tensor& out, bool contact, float floor) {
-  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);
+  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);  // x: the centre frames
   auto head = out.contiguous();                                                        // [M,1+contact,H,W]
   auto in = x.contiguous();                                                            // [N,T,H,W]
   auto y = torch::empty({n, t, h, w}, x.options());
@@ -190,7 +180,7 @@ torch::Tensor InferenceNet::forward_window(const torch::Tensor& x, const torch::
 torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::Tensor& source,
                                           const torch::Tensor& target) {
   const auto& c = config_;
-  const auto n = x.size(0), t = x.size(1);
+  const auto n = x.size(0), t = x.size(1) - 2 * c.context;  // t output frames
   // One body pair for all windows? Read on the host: a few floats, no tensor ops.
   const auto src = source.contiguous(), dst = target.contiguous();
   const float *sp = src.data_ptr<float>(), *dp = dst.data_ptr<float>();
@@ -253,7 +243,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
   auto d1 = block(4, lateral_up(layers_[6], m, e1).add_(e1));                          // [M,C2,H1,W1]
   auto d0 = block(5, lateral_up(layers_[7], d1, e0).add_(e0));                         // [M,C1,H,W]
   auto out = torch::conv2d(d0, layers_[8].weight, layers_[8].bias, 1, 1);             // [M,1+contact,H,W]
-  return frame_outputs(x, out, c.contact, c.contact ? contact_floor_.item<float>() : 0.0f);
+  return frame_outputs(x.narrow(1, c.context, t), out, c.contact, c.contact ? contact_floor_.item<float>() : 0.0f);
 }
 
 }  // namespace ptnet

@@ -149,15 +149,19 @@ torch::Tensor FrameNetImpl::forward(const torch::Tensor& frames, const torch::Te
   return head(d0);                                                            // [M,1+contact,H,W]
 }
 
-// Frames of a window with their context as channels: x [N,T,H,W] ->
-// [N*T, 1 + 2 context, H, W], the window's first/last frame repeated.
-static torch::Tensor frames_with_context(const torch::Tensor& x, int context) {
-  const auto n = x.size(0), t = x.size(1), h = x.size(2), w = x.size(3);
+torch::Tensor frame_inputs(const torch::Tensor& x, int context) {
+  const auto n = x.size(0), t = x.size(1) - 2 * context, h = x.size(2), w = x.size(3);
+  TORCH_CHECK(t >= 1, "frame_inputs: a window of ", x.size(1), " frames has none inside its context of ", context);
   if (context == 0) return x.reshape({n * t, 1, h, w});
-  auto padded = torch::cat({x.narrow(1, 0, 1).expand({n, context, h, w}), x,
-                            x.narrow(1, t - 1, 1).expand({n, context, h, w})}, 1);  // [N,T+2c,H,W]
-  auto u = padded.unfold(1, 2 * context + 1, 1);                               // [N,T,H,W,K]
+  auto u = x.unfold(1, 2 * context + 1, 1);                                     // [N,T,H,W,K]
   return u.permute({0, 1, 4, 2, 3}).reshape({n * t, 2 * context + 1, h, w});
+}
+
+torch::Tensor with_margin(const torch::Tensor& frames, int margin) {
+  if (margin == 0) return frames;
+  const auto t = frames.size(0), h = frames.size(1), w = frames.size(2);
+  return torch::cat({frames.narrow(0, 0, 1).expand({margin, h, w}), frames,
+                     frames.narrow(0, t - 1, 1).expand({margin, h, w})}, 0);  // [T+2m,H,W]
 }
 
 torch::Tensor PressureTransferNetImpl::forward(const torch::Tensor& x, const torch::Tensor& source,
@@ -198,11 +202,11 @@ PressureTransferNetImpl::Raw PressureTransferNetImpl::forward_parts(const torch:
   const std::int64_t n = x.size(0);
   if (c.arch == Arch::frame) {
     // Each frame on its own; the attributes repeated for the window's frames.
-    const auto t = x.size(1);
+    const auto t = x.size(1) - 2 * c.context;
     auto conditions = torch::cat({source, target}, 1).repeat_interleave(t, 0);  // [N*T, 2A]
-    auto out = frame(frames_with_context(x, c.context), conditions);             // [N*T,1+contact,H,W]
+    auto out = frame(frame_inputs(x, c.context), conditions);                    // [N*T,1+contact,H,W]
     const std::vector<int64_t> shape{n, t, x.size(2), x.size(3)};
-    Raw r{x + out.select(1, 0).reshape(shape), torch::Tensor()};
+    Raw r{x.narrow(1, c.context, t) + out.select(1, 0).reshape(shape), torch::Tensor()};
     if (c.contact) r.contact = out.select(1, 1).reshape(shape);
     return r;
   }

@@ -104,8 +104,10 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
           : PressureSequence{};
   const PressureSequence& in = d.model.align == Align::zoom ? aligned : src;
   torch::InferenceMode inference;
-  torch::Tensor input = torch::from_blob(const_cast<float*>(in.kpa.data()), {t, h, w}, torch::kFloat32)
-                            .mul(inv_scale);                             // [T, H, W] normalised
+  // Window s's input is input[s, s + K + 2m): its frames and their context.
+  const int m = input_margin(d.model);
+  torch::Tensor input = with_margin(
+      torch::from_blob(const_cast<float*>(in.kpa.data()), {t, h, w}, torch::kFloat32).mul(inv_scale), m);  // [T+2m,H,W]
   PressureSequence out(src.mat, t, src.fps);
   torch::Tensor sum = torch::from_blob(out.kpa.data(), {t, h, w}, torch::kFloat32);  // [T, H, W], out's memory
   sum.zero_();
@@ -118,13 +120,14 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
     // Consecutive windows of one frame (the frame network) are a view, else a stack.
     torch::Tensor x;
     if (k == 1 && starts[b + n - 1] - starts[b] == n - 1) {
-      x = input.narrow(0, starts[b], n).unsqueeze(1);                    // [n, 1, H, W]
+      auto frames = input.narrow(0, starts[b], n + 2 * m);               // [n + 2m, H, W]
+      x = m == 0 ? frames.unsqueeze(1) : frames.unfold(0, 1 + 2 * m, 1).permute({0, 3, 1, 2});  // [n,1+2m,H,W]
     } else {
       std::vector<torch::Tensor> windows;
-      for (int i = 0; i < n; ++i) windows.push_back(input.narrow(0, starts[b + i], k));
-      x = torch::stack(windows);                                          // [n, K, H, W]
+      for (int i = 0; i < n; ++i) windows.push_back(input.narrow(0, starts[b + i], k + 2 * m));
+      x = torch::stack(windows);                                          // [n, K + 2m, H, W]
     }
-    auto y = impl_->model->forward(x, s_all.expand({n, 3}), t_all.expand({n, 3}));
+    auto y = impl_->model->forward(x, s_all.expand({n, 3}), t_all.expand({n, 3}));  // [n, K, H, W]
     for (int i = 0; i < n; ++i) {
       sum.narrow(0, starts[b + i], k).add_(y[i]);
       cover.narrow(0, starts[b + i], k).add_(1.0f);

@@ -6,33 +6,48 @@
 
 namespace ptnet {
 
+void Batcher::read_with_margin(int seq, int start, int count, float* out) {
+  const int frames = source_.sequences()[std::size_t(seq)].frames;
+  const std::size_t cells = std::size_t(source_.mat().cells());
+  const int first = std::max(0, start - margin_), last = std::min(frames, start + count + margin_);  // [first, last)
+  float* inside = out + std::size_t(first - (start - margin_)) * cells;
+  cache_.read(seq, first, last - first, inside);
+  for (float* f = out; f < inside; f += cells) std::copy_n(inside, cells, f);
+  const float* end_frame = inside + std::size_t(last - first - 1) * cells;
+  float* stop = out + std::size_t(count + 2 * margin_) * cells;
+  for (float* f = inside + std::size_t(last - first) * cells; f < stop; f += cells) std::copy_n(end_frame, cells, f);
+}
+
 Batch Batcher::load(const std::vector<WindowRef>& refs, bool with_source) {
-  const int n = int(refs.size()), t = index_.options().window;
+  const int n = int(refs.size()), t = index_.options().window, ti = t + 2 * margin_;
   const MatSpec m = source_.mat();
-  const std::int64_t per = std::int64_t(t) * m.cells();
+  const std::int64_t per = std::int64_t(t) * m.cells(), per_in = std::int64_t(ti) * m.cells();
   Batch b;
-  b.x = torch::empty({n, t, m.rows, m.cols}, torch::kFloat32);
+  b.margin = margin_;
+  b.x = torch::empty({n, ti, m.rows, m.cols}, torch::kFloat32);
   b.y = torch::empty({n, t, m.rows, m.cols}, torch::kFloat32);
   b.sa = torch::empty({n, kAttributes}, torch::kFloat32);
   b.ta = torch::empty({n, kAttributes}, torch::kFloat32);
   float *x = b.x.data_ptr<float>(), *y = b.y.data_ptr<float>();
   float *sa = b.sa.data_ptr<float>(), *ta = b.ta.data_ptr<float>();
-  // Aligned input: the recorded source windows go to b.src (kept for the
-  // baselines) or a scratch window, and their zoom to b.x.
+  // Aligned input: the recorded source windows (with their margin) go to a
+  // scratch window, their zoom to b.x, and their centre frames to b.src
+  // (kept for the baselines).
   const bool aligned = align_ == Align::zoom;
-  if (aligned && with_source) b.src = torch::empty_like(b.x);
-  std::vector<float> scratch(aligned && !with_source ? std::size_t(per) : 0);
+  if (aligned && with_source) b.src = torch::empty_like(b.y);
+  std::vector<float> scratch(aligned ? std::size_t(per_in) : 0);
   for (int i = 0; i < n; ++i) {
     const Pair& p = index_.pairs()[std::size_t(refs[i].pair)];
     if (aligned) {
-      float* recorded = with_source ? b.src.data_ptr<float>() + i * per : scratch.data();
-      cache_.read(p.source, refs[i].start, t, recorded);
+      read_with_margin(p.source, refs[i].start, t, scratch.data());
+      if (with_source)
+        std::copy_n(scratch.data() + std::size_t(margin_) * m.cells(), per, b.src.data_ptr<float>() + i * per);
       const BodySpec& a = body_of(p.source);
       const BodySpec& z = body_of(p.target);
-      zoom_frames(recorded, x + i * per, t, m.rows, m.cols, body_scale(a.height_cm, z.height_cm),
+      zoom_frames(scratch.data(), x + i * per_in, ti, m.rows, m.cols, body_scale(a.height_cm, z.height_cm),
                   body_gain(a.height_cm, a.weight_kg, z.height_cm, z.weight_kg));
     } else {
-      cache_.read(p.source, refs[i].start, t, x + i * per);
+      read_with_margin(p.source, refs[i].start, t, x + i * per_in);
     }
     cache_.read(p.target, refs[i].start, t, y + i * per);
     std::copy_n(attrs_[std::size_t(p.source)].data(), kAttributes, sa + i * kAttributes);
@@ -41,7 +56,7 @@ Batch Batcher::load(const std::vector<WindowRef>& refs, bool with_source) {
   b.x.mul_(inv_scale_);
   b.y.mul_(inv_scale_);
   if (aligned && with_source) b.src.mul_(inv_scale_);
-  else b.src = b.x;
+  else b.src = b.centre();
   if (device_ != torch::kCPU) {
     b.x = b.x.to(device_), b.y = b.y.to(device_), b.sa = b.sa.to(device_), b.ta = b.ta.to(device_);
     b.src = b.src.to(device_);
@@ -52,7 +67,7 @@ Batch Batcher::load(const std::vector<WindowRef>& refs, bool with_source) {
 void crop_to_pressure(Batch& b, int rows) {
   const auto n = b.x.size(0), h = b.x.size(2);
   if (rows >= h) return;
-  auto profile = (b.x + b.y).sum({1, 3});                                   // [N,H]
+  auto profile = (b.centre() + b.y).sum({1, 3});                            // [N,H]
   auto mass = profile.sum(1);                                               // [N]
   auto centre = (profile * torch::arange(h, profile.options())).sum(1) / mass.clamp_min(1e-12);
   const torch::Tensor centre_cpu = centre.cpu(), mass_cpu = mass.cpu();

@@ -47,7 +47,7 @@ ValidationResult validate_model(PressureTransferNet& net, Batcher& batcher, cons
     if (baselines) {
       copy_sum += torch::mse_loss(b.src, b.y, torch::Reduction::Sum).item<double>();
       zero_sum += b.y.pow(2).sum().item<double>();
-      if (aligned) zoom_sum += torch::mse_loss(b.x, b.y, torch::Reduction::Sum).item<double>();
+      if (aligned) zoom_sum += torch::mse_loss(b.centre(), b.y, torch::Reduction::Sum).item<double>();
       std::vector<float> ratio;
       for (const auto& r : refs) ratio.push_back(float(batcher.weight_ratio(r)));
       auto k = torch::tensor(ratio).view({-1, 1, 1, 1}).to(b.x.device());

@@ -451,7 +451,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
   TrainState s = start_or_resume(run, net, optimizer);
   check_ranks_agree(run, index, net, s);
   log_setup(run, index, net, s);
-  Batcher batcher(source, index, run.md.norm, o.cache_mb, run.device, run.md.model.align);
+  Batcher batcher(source, index, run.md.norm, o.cache_mb, run.device, run.md.model);
   leftovers.done();  // from here a failure names what it keeps (the checkpoint)
   run_epochs(run, net, optimizer, batcher, index, s);
   return final_metrics(run, net, batcher, index, s, t_start);
