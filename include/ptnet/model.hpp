@@ -23,8 +23,9 @@
 // conditional U-Net on its own, with `context` frames on each side as extra
 // input channels, and the result is added to the frame. Its input window
 // carries those neighbours: x [N, T + 2 context, H, W] -> [N, T, H, W]
-// (input_margin, model_config.hpp; with_margin pads a whole sequence). Every convolution is followed by BatchNorm (no affine) and a
-// FiLM modulation (1 + gamma, beta) computed by a small MLP from the source
+// (input_margin, model_config.hpp; with_margin pads a whole sequence).
+// Every convolution is followed by BatchNorm (no affine) and a FiLM
+// modulation (1 + gamma, beta) computed by a small MLP from the source
 // and target attributes, so the body attributes act at every scale:
 //   enc0 K->C1 (H x W), pool, enc1 C1->C2 (H1 x W1), pool, enc2 C2->C3 and
 //   mid C3->C3 (H2 x W2); dec1: upsample, 1x1 C3->C2 + enc1, C2->C2;

@@ -217,7 +217,7 @@ def _frame_net(net, x, source, target):
     f = net.frame
     c = net.context
     n, t, h, w = x.v.shape[0], x.v.shape[1] - 2 * c, x.v.shape[2], x.v.shape[3]  # x holds T + 2 context frames
-    film = _linear(_relu(_linear(_cat([source, target]).map(lambda c: c.repeat_interleave(t, 0)), f.film1)), f.film2)
+    film = _linear(_relu(_linear(_cat([source, target]).map(lambda v: v.repeat_interleave(t, 0)), f.film1)), f.film2)
 
     def block(i, inp):  # relu(norm(conv(x)) (1 + gamma) + beta)
         y = _conv(inp, getattr(f, f"conv{i}"), getattr(f, f"norm{i}"))

@@ -37,11 +37,9 @@ Stream::Stream(const std::string& model_dir, const BodySpec& source, const BodyS
   s.model = load_model(model_dir, "cpu", options.threads, /*batch=*/1);
   const ModelDir& d = s.model->dir;
   if (input_margin(d.model) > 0)
-    throw Error::in(ModelFiles(model_dir).config(), "the model reads " + std::to_string(d.model.context) +
-                                                 " frames ahead of each frame (context " +
-                                                 std::to_string(d.model.context) +
-                                                 "); a stream transfers each frame as it arrives, so it "
-                                                 "needs a model with context 0");
+    throw Error::in(ModelFiles(model_dir).config(),
+                    "the model reads frames ahead of each frame (context " + std::to_string(d.model.context) +
+                        "); a stream transfers each frame as it arrives, so it needs a model with context 0");
   s.k = d.model.window;
   s.cells = d.model.rows * d.model.cols;
   s.zoom = d.model.align == Align::zoom;

@@ -120,8 +120,7 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
     // Consecutive windows of one frame (the frame network) are a view, else a stack.
     torch::Tensor x;
     if (k == 1 && starts[b + n - 1] - starts[b] == n - 1) {
-      auto frames = input.narrow(0, starts[b], n + 2 * m);               // [n + 2m, H, W]
-      x = m == 0 ? frames.unsqueeze(1) : frames.unfold(0, 1 + 2 * m, 1).permute({0, 3, 1, 2});  // [n,1+2m,H,W]
+      x = input.narrow(0, starts[b], n + 2 * m).unfold(0, 1 + 2 * m, 1).permute({0, 3, 1, 2});  // [n,1+2m,H,W]
     } else {
       std::vector<torch::Tensor> windows;
       for (int i = 0; i < n; ++i) windows.push_back(input.narrow(0, starts[b + i], k + 2 * m));

@@ -7,15 +7,11 @@
 namespace ptnet {
 
 void Batcher::read_with_margin(int seq, int start, int count, float* out) {
-  const int frames = source_.sequences()[std::size_t(seq)].frames;
+  if (margin_ == 0) return cache_.read(seq, start, count, out);
+  const int last = source_.sequences()[std::size_t(seq)].frames - 1;
   const std::size_t cells = std::size_t(source_.mat().cells());
-  const int first = std::max(0, start - margin_), last = std::min(frames, start + count + margin_);  // [first, last)
-  float* inside = out + std::size_t(first - (start - margin_)) * cells;
-  cache_.read(seq, first, last - first, inside);
-  for (float* f = out; f < inside; f += cells) std::copy_n(inside, cells, f);
-  const float* end_frame = inside + std::size_t(last - first - 1) * cells;
-  float* stop = out + std::size_t(count + 2 * margin_) * cells;
-  for (float* f = inside + std::size_t(last - first) * cells; f < stop; f += cells) std::copy_n(end_frame, cells, f);
+  for (int f = start - margin_; f < start + count + margin_; ++f, out += cells)  // as with_margin: ends repeated
+    cache_.read(seq, std::clamp(f, 0, last), 1, out);
 }
 
 Batch Batcher::load(const std::vector<WindowRef>& refs, bool with_source) {
