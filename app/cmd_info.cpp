@@ -14,6 +14,7 @@
 #include "command.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/data.hpp"
+#include "ptnet/markers.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/strings.hpp"
 
@@ -26,6 +27,7 @@ struct InfoCli {
   std::string units = "auto";
   std::string up = "y";
   bool keep_tpose = false;
+  std::string marker_map, static_markers;  // .trc
 };
 
 // The unit metres_per_unit() chose (auto) or was given.
@@ -74,15 +76,69 @@ nlohmann::ordered_json describe_bvh(const InfoCli& o) {
   return j;
 }
 
+nlohmann::ordered_json describe_trc(const InfoCli& o) {
+  const Trc trc = read_trc(o.file);
+  MotionOptions mo;
+  mo.marker_map = o.marker_map;
+  mo.static_markers = o.static_markers;
+  MarkerReport report;
+  const Motion motion = motion_from_trc(trc, mo, &report);
+  nlohmann::ordered_json j;
+  j["file"] = o.file;
+  j["format"] = "trc";
+  j["markers"] = trc.markers.size();
+  j["frames"] = trc.frames();
+  j["fps"] = trc.rate_hz;
+  j["duration_s"] = trc.time_s.back() - trc.time_s.front() + 1 / trc.rate_hz;
+  j["start_s"] = trc.time_s.front();
+  j["metres_per_unit"] = trc.metres_per_unit;
+  j["up"] = report.up_axis;
+  j["marker_map"] = report.map;
+  j["landmarks"] = report.placed;
+  j["calibrated"] = report.calibrated;
+  j["methods"] = report.methods;
+  j["gap_filled_samples"] = report.gap_filled_frames;
+  j["stature_m"] = report.stature_m;
+  j["treadmill_belt_mps"] = report.belt_speed_mps;
+  j["standing_height_m"] = standing_height(motion);
+  j["marker_names"] = trc.markers;
+  return j;
+}
+
 nlohmann::ordered_json describe(const InfoCli& o) {
   const std::string ext = lower(std::filesystem::path(o.file).extension().string());
   if (ext == ".bvh") return describe_bvh(o);
+  if (ext == ".trc") return describe_trc(o);
   // New file types: one branch here, one describe_<type>() above.
   throw Error::in(o.file, "unsupported file type '" + (ext.empty() ? std::string("(none)") : ext) +
-                              "' (ptnet info reads .bvh and .h5)");
+                              "' (ptnet info reads .bvh, .trc and .h5)");
+}
+
+void print_trc(const nlohmann::ordered_json& j) {
+  std::ostringstream s;
+  s << std::fixed;
+  s << j["file"].get<std::string>() << ": markers (.trc)\n";
+  s << "  markers           " << j["markers"].get<int>() << ", map " << j["marker_map"].get<std::string>() << " ("
+    << j["landmarks"].size() << " landmarks)\n";
+  s << "  frames            " << j["frames"].get<int>() << " from " << std::setprecision(3)
+    << j["start_s"].get<double>() << " s\n";
+  s << "  fps               " << std::setprecision(3) << j["fps"].get<double>() << "\n";
+  s << "  duration          " << std::setprecision(2) << j["duration_s"].get<double>() << " s\n";
+  s << "  units             " << std::setprecision(5) << j["metres_per_unit"].get<double>() << " m per unit, up "
+    << j["up"].get<std::string>() << "\n";
+  s << "  stature (est.)    " << std::setprecision(3) << j["stature_m"].get<double>() << " m\n";
+  s << "  gap-filled        " << j["gap_filled_samples"].get<int>() << " marker samples\n";
+  if (j["treadmill_belt_mps"].get<double>() > 0)
+    s << "  treadmill         belt " << std::setprecision(2) << j["treadmill_belt_mps"].get<double>()
+      << " m/s, removed\n";
+  for (const auto& c : j["calibrated"]) s << "  from static trial " << c.get<std::string>() << "\n";
+  s << "  joints\n";
+  for (const auto& m : j["methods"]) s << "    " << m.get<std::string>() << "\n";
+  std::cout << s.str();
 }
 
 void print_text(const nlohmann::ordered_json& j) {
+  if (j["format"] == "trc") return print_trc(j);
   std::ostringstream s;
   s << std::fixed;
   s << j["file"].get<std::string>() << ": BVH\n";
@@ -111,8 +167,11 @@ void setup(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("info",
                          "Print what a motion file holds (BVH: joints, frames, fps, units, "
-                         "standing height, canonical joint mapping)");
-  cmd->add_option("file", opt->file, "Motion file (.bvh)")->required();
+                         "standing height, canonical joint mapping; .trc markers: the marker map, "
+                         "how each joint was placed) or a dataset");
+  cmd->add_option("file", opt->file, "Motion file (.bvh, .trc) or dataset (.h5)")->required();
+  cmd->add_option("--marker-map", opt->marker_map, ".trc: a shipped marker map (delaware, plugin-gait, common) or a map file");
+  cmd->add_option("--static", opt->static_markers, ".trc: the static trial that calibrates missing joint markers");
   cmd->add_flag("--json", opt->json, "Machine-readable JSON on stdout");
   cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu")
       ->capture_default_str()

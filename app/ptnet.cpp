@@ -3,7 +3,7 @@
 //
 // Two executables are built from these files (app/CMakeLists.txt):
 //   ptnet        the commands that need no LibTorch (simulate, bodies, info,
-//                render, merge, motions); for any other command line it
+//                render, merge, motions, physics-bench); for any other command line it
 //                runs ptnet-torch with the same arguments (execv).
 //   ptnet-torch  every command, linked with LibTorch: beside ptnet in the
 //                build folder, in libexec/ptnet/ when installed.

@@ -84,6 +84,8 @@ function(ptnet_test file)
     PTNET_TEST_DATA="${PROJECT_SOURCE_DIR}/tests/data"
     PTNET_SHARED_MOCAP="${PROJECT_SOURCE_DIR}/../shared/mocap"
     PTNET_SHARED_CORPUS="${PROJECT_SOURCE_DIR}/../shared/mocap-corpus"
+    PTNET_SHARED_GAIT="${PROJECT_SOURCE_DIR}/../shared/real-gait"
+    PTNET_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PTNET_BINARY="$<TARGET_FILE:ptnet>")
   if(NOT T_LABELS)
     set(T_LABELS unit)

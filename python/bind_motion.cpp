@@ -132,6 +132,7 @@ void bind_motion(py::module_& m) {
                      "A motion on the canonical skeleton: world joint positions (m, z up, ground z = 0) at fps.")
       .def_readonly("name", &Motion::name)
       .def_readonly("fps", &Motion::fps)
+      .def_readonly("start_s", &Motion::start_s, "time of frame 0 on the recording's clock (s)")
       .def("__len__", &Motion::size)
       .def_property_readonly("frames", &Motion::size)
       .def_property_readonly("positions", &positions_view, "float64 [T, 19, 3] world joint positions (m), read-only view")
@@ -165,6 +166,28 @@ void bind_motion(py::module_& m) {
         py::arg("metres_per_unit") = 0.0, py::arg("keep_tpose") = false,
         "Reads a BVH file onto the canonical joints, resampled to fps (<= 0 keeps the file's), grounded. "
         "units: auto|m|cm|mm|in|cmu; up: y|z.");
+
+  m.def("read_motion",
+        [](const std::string& path, double fps, const std::string& marker_map, const std::string& static_markers,
+           double max_gap_s, bool remove_belt, const std::string& units, const std::string& up) {
+          MotionOptions o;
+          o.fps = fps;
+          o.marker_map = marker_map;
+          o.static_markers = static_markers;
+          o.max_gap_s = max_gap_s;
+          o.remove_belt = remove_belt;
+          o.units = parse_units(units);
+          o.up = parse_up_axis(up);
+          py::gil_scoped_release release;
+          return load_motion(path, o);
+        },
+        py::arg("path"), py::kw_only(), py::arg("fps") = kFps, py::arg("marker_map") = "",
+        py::arg("static") = "", py::arg("max_gap_s") = MotionOptions{}.max_gap_s,
+        py::arg("remove_belt") = MotionOptions{}.remove_belt, py::arg("units") = "auto", py::arg("up") = "y",
+        "Reads a motion file onto the canonical joints: BVH (units, up as read_bvh) or OpenSim markers (.trc: "
+        "marker_map a shipped map's name or a map file, '' chooses; static the standing trial that calibrates "
+        "missing joint markers; gaps up to max_gap_s filled), resampled to fps (<= 0 keeps the file's), "
+        "grounded, a treadmill belt removed (remove_belt).");
 
   m.def("generate_motion",
         [](const std::string& category, int performer, int take, double seconds, std::uint64_t seed, double fps,

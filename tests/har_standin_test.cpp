@@ -202,7 +202,7 @@ TEST(HarStandin, BadClipsCsvLinesNameFileAndLine) {
   EXPECT_EQ(message("file,subject,category,take\na.bvh,2,rom\n"),
             csv + ":2: expected 4 fields (as the header), found 3");
   EXPECT_EQ(message("file,subject,take\na.bvh,2,1\n"),
-            csv + ":1: expected a header with column category (file,subject,category,take[,metres_per_unit,up]), "
+            csv + ":1: expected a header with column category (file,subject,category,take[,metres_per_unit,up,marker_map,static]), "
                   "found 'file,subject,take'");
   EXPECT_EQ(message("file,subject,category,take\na.bvh,2,rom,0\n"),
             csv + ":2: expected take as an integer in 1-1000000, found '0'");

@@ -105,7 +105,7 @@ TEST_F(SimulateDataset, ClipsCsvRowsAndErrors) {
             csv + ":2: expected category walking, rom, freestyle or acting, found 'jogging'");
   spit(csv, "file,subject,take\n");
   EXPECT_EQ(error_of([&] { read_clips_csv(csv); }),
-            csv + ":1: expected a header with column category (file,subject,category,take[,metres_per_unit,up]), "
+            csv + ":1: expected a header with column category (file,subject,category,take[,metres_per_unit,up,marker_map,static]), "
                   "found 'file,subject,take'");
   spit(csv, "file,subject,category,take\ngone.bvh,1,walking,1\n");
   EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'gone.bvh' not found");

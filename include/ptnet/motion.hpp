@@ -107,6 +107,7 @@ struct Motion {
   std::string name;
   double fps = kFps;
   std::vector<Pose> frames;  // [F]
+  double start_s = 0;        // time of frame 0 on the recording's clock (s): a .trc's first Time
   int size() const { return int(frames.size()); }
 };
 
@@ -119,6 +120,16 @@ struct MotionOptions {
   UpAxis up = UpAxis::y;
   bool keep_tpose = false;     // a leading T-pose frame is dropped by default
   double fps = kFps;           // resample to this rate; <= 0 keeps the file's
+  // A treadmill's belt is detected and removed (treadmill_belt_velocity), so
+  // that a treadmill trial is simulated as the same gait overground.
+  bool remove_belt = true;
+  // Marker files (.trc, ptnet/markers.hpp): a shipped map's name or a map
+  // file ("": the shipped map that places the file), a static trial that
+  // calibrates the joint centres its markers miss ("": none), and the
+  // longest gap of a marker filled by interpolation (s).
+  std::string marker_map;
+  std::string static_markers;
+  double max_gap_s = 0.1;
 };
 
 // True if frame `f` is a T-pose: arms out horizontally, legs straight.
@@ -133,7 +144,16 @@ Bvh resample(const Bvh& bvh, double fps);
 // shifts z so that the floor (lower quartile over frames of the lowest foot
 // point, lowest_foot_z) is at z = 0. Name: the file stem.
 Motion motion_from_bvh(const Bvh& bvh, const MotionOptions& options);
+// A BVH file, or a marker file for a path ending in .trc (motion_from_trc).
 Motion load_motion(const std::string& path, const MotionOptions& options);
+
+// The velocity (world x, y; m/s) of a treadmill belt under `motion`: the
+// median horizontal velocity of the lower foot over the frames where it is
+// near the floor, when that is over 0.3 m/s while the pelvis travels less
+// than a third as fast; zero for a motion overground.
+Eigen::Vector2d treadmill_belt_velocity(const Motion& motion);
+// The motion as if overground: every joint moved by -velocity * t.
+Motion without_belt(Motion motion, const Eigen::Vector2d& velocity);
 
 // Standing height (m) of the first frames: top of head (head joint plus head
 // length) above the lowest foot point.
@@ -171,6 +191,16 @@ Bvh motion_to_bvh(const Motion& motion);
 
 // Lowest point of the foot soles (heel, toe tip) for one pose, z (m).
 double lowest_foot_z(const Pose& pose);
+// The pitch (rad, ~0.36) below the horizontal of the canonical ankle -> toe
+// joint bone of a foot standing flat: the ankle 0.039 H and the toe joint
+// 0.009 H above the sole, 0.079 H apart.
+double rest_foot_pitch();
+// Rotates each foot's toe joint about its ankle, toe down by
+// offsets[side] (rad; [left, right]; about the horizontal axis normal to the bone).
+void pitch_feet(Pose& pose, const std::array<double, 2>& offsets);
+// The back of the heel and the toe tip (world, m) of the left (side 0) or
+// right (side 1) foot: the canonical foot scaled to its ankle -> toe bone.
+std::array<Eigen::Vector3d, 2> foot_ends(const Pose& pose, int side);
 
 // ------------------------------------------------------ procedural motions
 

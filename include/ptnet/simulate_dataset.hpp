@@ -66,7 +66,8 @@ inline constexpr Range kClipSpeedRange{0.25, 4};
 std::vector<ClipSource> clips_at_speeds(const std::vector<ClipSource>& clips, const std::vector<double>& speeds);
 
 // One row of a clips CSV (docs/formats.md): columns file, subject, category,
-// take (required); metres_per_unit, up and activity used when present; other columns
+// take (required); metres_per_unit, up, activity, and for marker files
+// marker_map and static, used when present; other columns
 // (trial, rig, fps, frames) ignored. `file` is relative to the CSV's folder.
 struct ClipRow {
   std::string file;      // resolved path
@@ -76,6 +77,8 @@ struct ClipRow {
   double metres_per_unit = 0;  // 0: not given
   std::string up;              // "" : not given
   std::string activity;        // fine activity label, lower case ("" : no activity column)
+  std::string marker_map;      // .trc files: a shipped map's name or a map file (resolved path); "" : chosen
+  std::string static_markers;  // .trc files: the static trial (resolved path); "" : none
   long line = 0;               // line in the CSV, for messages
 };
 

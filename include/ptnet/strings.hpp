@@ -23,6 +23,8 @@ std::string lower(std::string s);
 std::vector<std::string> split(std::string_view text, char sep = ',');
 // A comma-separated list as typed on a command line: items trimmed, empty ones dropped.
 std::vector<std::string> split_list(std::string_view text);
+// The words of a line between runs of blanks (space, tab, CR, LF).
+std::vector<std::string> split_blanks(std::string_view text);
 // The items joined with `sep`.
 std::string join(const std::vector<std::string>& items, std::string_view sep = ",");
 bool starts_with(std::string_view s, std::string_view prefix);

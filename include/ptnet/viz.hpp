@@ -132,6 +132,7 @@ struct LineChart {
   std::string title, x_label, y_label;
   std::vector<LineSeries> series;
   int width = 640, height = 300;
+  bool points = true;  // a dot (with its value as a tooltip) at every point; false for dense series
 };
 std::string svg_line_chart(const LineChart& chart);
 

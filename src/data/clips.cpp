@@ -11,6 +11,7 @@
 #include "ptnet/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/markers.hpp"
 #include "ptnet/simulate_dataset.hpp"
 #include "ptnet/strings.hpp"
 
@@ -19,7 +20,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool is_bvh(const fs::path& p) { return lower(p.extension().string()) == ".bvh"; }
+// A motion file a folder is searched for: BVH or markers (.trc).
+bool is_motion_file(const fs::path& p) {
+  const std::string ext = lower(p.extension().string());
+  return ext == ".bvh" || ext == ".trc";
+}
 
 // A path key for matching --motions files against clips.csv rows.
 std::string key_of(const std::string& path) {
@@ -38,11 +43,11 @@ std::vector<ClipRow> read_clips_csv(const std::string& path) {
 std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string& path) {
   const CsvTable t = parse_csv(text, path);
   const fs::path folder = fs::path(path).parent_path();
-  const std::string columns = "file,subject,category,take[,metres_per_unit,up]";
+  const std::string columns = "file,subject,category,take[,metres_per_unit,up,marker_map,static]";
   const int c_file = t.required("file", columns), c_subject = t.required("subject", columns),
             c_category = t.required("category", columns), c_take = t.required("take", columns),
             c_mpu = t.column("metres_per_unit"), c_up = t.column("up"),
-            c_activity = t.column("activity");
+            c_activity = t.column("activity"), c_map = t.column("marker_map"), c_static = t.column("static");
   std::vector<ClipRow> rows;
   for (const CsvRow& row : t.rows) {
     const long number = row.line;
@@ -80,6 +85,13 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
     r.activity = lower(get(c_activity));
     r.up = lower(get(c_up));
     if (!r.up.empty() && r.up != "y" && r.up != "z") throw Error::at(path, number, "up y or z", escaped(get(c_up)));
+    auto resolved = [&](const std::string& f) {
+      return f.empty() || fs::path(f).is_absolute() ? f : (folder / f).lexically_normal().string();
+    };
+    r.static_markers = resolved(get(c_static));
+    const std::vector<std::string> shipped = marker_map_names();
+    r.marker_map = get(c_map);
+    if (std::find(shipped.begin(), shipped.end(), r.marker_map) == shipped.end()) r.marker_map = resolved(r.marker_map);
     std::error_code ec;
     if (!fs::is_regular_file(r.file, ec))
       throw Error(
@@ -121,9 +133,9 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
       std::vector<std::string> found;
       for (auto it = fs::recursive_directory_iterator(in, ec); !ec && it != fs::recursive_directory_iterator();
            it.increment(ec))
-        if (it->is_regular_file(ec) && is_bvh(it->path())) found.push_back(it->path().lexically_normal().string());
+        if (it->is_regular_file(ec) && is_motion_file(it->path())) found.push_back(it->path().lexically_normal().string());
       if (ec) throw Error::in(in, "cannot list folder: " + ec.message(), ErrorKind::io);
-      if (found.empty()) throw Error::in(in, "folder holds no .bvh files");
+      if (found.empty()) throw Error::in(in, "folder holds no .bvh or .trc files");
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else if (fs::exists(in, ec)) {
@@ -153,6 +165,8 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
       c.meta.take = r.take;
       if (r.metres_per_unit > 0) c.motion.metres_per_unit = r.metres_per_unit;
       if (!r.up.empty()) c.motion.up = parse_up_axis(r.up);
+      if (!r.marker_map.empty()) c.motion.marker_map = r.marker_map;
+      if (!r.static_markers.empty()) c.motion.static_markers = r.static_markers;
       return c;
     };
     if (inputs.empty()) {

@@ -1,11 +1,14 @@
-// BVH file -> Motion on the canonical joints: units, mapping, leading
-// T-pose, resampling, forward kinematics.
+// Motion files -> Motion on the canonical joints. BVH: units, mapping,
+// leading T-pose, resampling, forward kinematics; then, for every loader,
+// grounding and a treadmill belt removed.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <vector>
 
 #include "ptnet/error.hpp"
+#include "motion_internal.hpp"
+#include "ptnet/markers.hpp"
 #include "ptnet/motion.hpp"
 
 namespace ptnet {
@@ -33,6 +36,7 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
   Motion m;
   m.name = std::filesystem::path(source.source).stem().string();
   m.fps = bvh->fps();
+  if (!trimmed.joints.empty()) m.start_s = source.frame_time;  // the T-pose frame dropped
   const std::vector<Eigen::Vector3d> p = forward_kinematics(*bvh, scale, options.up);
   const std::size_t J = bvh->joints.size();
   m.frames.resize(std::size_t(bvh->frames()));
@@ -40,10 +44,23 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
     for (int k = 0; k < kJointCount; ++k)
       m.frames[f][std::size_t(k)] = p[f * J + std::size_t(map[std::size_t(k)])];
 
-  // Ground: the floor is where the feet are in most frames. Its height is
-  // the lower quartile of the per-frame lowest sole point: robust to
-  // airborne phases and to stretches of feet through the floor (CMU 141_15
-  // squats sink the toes 10 cm for a tenth of the clip).
+  detail::ground(m);
+  if (options.remove_belt) {
+    const Eigen::Vector2d belt = treadmill_belt_velocity(m);
+    if (belt.norm() > 0) m = without_belt(std::move(m), belt);
+  }
+  return m;
+}
+
+Motion load_motion(const std::string& path, const MotionOptions& options) {
+  if (is_trc_path(path)) return motion_from_trc(read_trc(path), options);
+  return motion_from_bvh(read_bvh(path), options);
+}
+
+namespace detail {
+
+void ground(Motion& m) {
+  if (m.frames.empty()) return;
   std::vector<double> lowest(m.frames.size());
   for (std::size_t f = 0; f < m.frames.size(); ++f) lowest[f] = lowest_foot_z(m.frames[f]);
   const std::size_t q = lowest.size() / 4;
@@ -51,11 +68,26 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
   const double floor_z = lowest[q];
   for (Pose& pose : m.frames)
     for (Eigen::Vector3d& joint : pose) joint.z() -= floor_z;
-  return m;
 }
 
-Motion load_motion(const std::string& path, const MotionOptions& options) {
-  return motion_from_bvh(read_bvh(path), options);
+Motion resample_linear(const Motion& motion, double fps) {
+  Motion out = motion;
+  out.fps = fps;
+  out.frames.clear();
+  const double duration = (motion.size() - 1) / motion.fps;
+  const int T = int(std::floor(duration * fps + 1e-9)) + 1;
+  for (int t = 0; t < T; ++t) {
+    const double x = t / fps * motion.fps;
+    const int i = std::min(int(x), motion.size() - 1);
+    const int j = std::min(i + 1, motion.size() - 1);
+    const double a = x - i;
+    Pose p;
+    for (int k = 0; k < kJointCount; ++k) p[k] = (1 - a) * motion.frames[i][k] + a * motion.frames[j][k];
+    out.frames.push_back(p);
+  }
+  return out;
 }
+
+}  // namespace detail
 
 }  // namespace ptnet

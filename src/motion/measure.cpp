@@ -11,8 +11,11 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "ptnet/anthropometry.hpp"
 #include "ptnet/error.hpp"
+#include "motion_internal.hpp"
 #include "ptnet/motion.hpp"
 
 namespace ptnet {
@@ -38,10 +41,14 @@ Eigen::Vector2d in_foot_frame(const Eigen::Vector3d& v) {
   return {v.dot(u), v.dot(w)};
 }
 
-double foot_lowest_z(const Eigen::Vector3d& ankle, const Eigen::Vector3d& toe) {
+}  // namespace
+
+namespace detail {
+
+SolePoints sole_points(const Eigen::Vector3d& ankle, const Eigen::Vector3d& toe) {
   const Eigen::Vector3d d = toe - ankle;
   const double length = d.norm();
-  if (length < 1e-9) return std::min(ankle.z(), toe.z());
+  if (length < 1e-9) return {ankle, toe};
   const double H = length / kToeRest.norm();
   const Eigen::Vector3d u = d / length;
   // w: in the vertical plane through the foot, normal to u, pointing up.
@@ -50,16 +57,39 @@ double foot_lowest_z(const Eigen::Vector3d& ankle, const Eigen::Vector3d& toe) {
   w.normalize();
   static const Eigen::Vector2d heel = in_foot_frame(kHeelRest);
   static const Eigen::Vector2d tip = in_foot_frame(kTipRest);
-  const double heel_z = ankle.z() + H * (heel.x() * u.z() + heel.y() * w.z());
-  const double tip_z = toe.z() + H * (tip.x() * u.z() + tip.y() * w.z());
-  return std::min(heel_z, tip_z);
+  return {ankle + H * (heel.x() * u + heel.y() * w), toe + H * (tip.x() * u + tip.y() * w)};
 }
 
-}  // namespace
+double foot_lowest_z(const Eigen::Vector3d& ankle, const Eigen::Vector3d& toe) {
+  const SolePoints p = sole_points(ankle, toe);
+  return std::min(p.heel.z(), p.tip.z());
+}
+
+}  // namespace detail
 
 double lowest_foot_z(const Pose& pose) {
-  return std::min(foot_lowest_z(pose[kLeftAnkle], pose[kLeftToe]),
-                  foot_lowest_z(pose[kRightAnkle], pose[kRightToe]));
+  return std::min(detail::foot_lowest_z(pose[kLeftAnkle], pose[kLeftToe]),
+                  detail::foot_lowest_z(pose[kRightAnkle], pose[kRightToe]));
+}
+
+double rest_foot_pitch() { return std::atan2(-kToeRest.z(), kToeRest.x()); }
+
+void pitch_feet(Pose& pose, const std::array<double, 2>& offsets) {
+  for (int s = 0; s < 2; ++s) {
+    if (offsets[std::size_t(s)] == 0) continue;
+    const int a = s ? kRightAnkle : kLeftAnkle, b = a + 1;
+    const Eigen::Vector3d d = pose[b] - pose[a];
+    const Eigen::Vector3d axis = Eigen::Vector3d::UnitZ().cross(d);
+    if (axis.norm() < 1e-9) continue;
+    // Rotating about z x d by +angle lowers the toe joint (pitches the foot down).
+    pose[b] = pose[a] + Eigen::AngleAxisd(offsets[std::size_t(s)], axis.normalized()) * d;
+  }
+}
+
+std::array<Eigen::Vector3d, 2> foot_ends(const Pose& pose, int side) {
+  const detail::SolePoints p = side == 0 ? detail::sole_points(pose[kLeftAnkle], pose[kLeftToe])
+                                         : detail::sole_points(pose[kRightAnkle], pose[kRightToe]);
+  return {p.heel, p.tip};
 }
 
 double standing_height(const Motion& motion) {

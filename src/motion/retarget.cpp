@@ -58,6 +58,7 @@ Motion retarget(const Motion& motion, double height_cm) {
   Motion out;
   out.name = motion.name;
   out.fps = motion.fps;
+  out.start_s = motion.start_s;
   out.frames.reserve(motion.frames.size());
   std::vector<double> lowest;
   lowest.reserve(motion.frames.size());

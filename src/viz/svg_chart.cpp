@@ -237,7 +237,7 @@ std::string svg_line_chart(const LineChart& c) {
     if (!path.empty())
       o << "<path d=\"" << path << "\" stroke=\"" << colour
         << "\" stroke-width=\"2\" fill=\"none\"/>\n";
-    for (std::size_t i = 0; i < ser.x.size(); ++i)
+    for (std::size_t i = 0; c.points && i < ser.x.size(); ++i)
       if (std::isfinite(ser.x[i]) && std::isfinite(ser.y[i]))
         o << "<circle cx=\"" << num(xa.px(ser.x[i], f.x0, f.x1)) << "\" cy=\""
           << num(ya.px(ser.y[i], f.y1, f.y0)) << "\" r=\"3\" fill=\"" << colour << "\"><title>"

@@ -1,0 +1,141 @@
+// ptnet/physics.hpp: the simulator's ground reaction forces, and the
+// simulator checked against real force plates.
+//
+//   ptnet::ForcePlates fp = ptnet::read_grf_mot("walk_grf.mot");   // OpenSim plates [N, P]
+//   std::vector<ptnet::FrameTrace> trace;
+//   ptnet::simulate(motion, body, opt, &trace);
+//   ptnet::ForceTable f = ptnet::force_table(trace, motion, body);  // N, BW, CoP per frame
+//   ptnet::write_force_table(f, "walk_sim.mot", /*force=*/false);    // OpenSim / spreadsheets
+//
+//   auto trials = ptnet::read_gait_trials("bench/real-gait.csv", "../shared/real-gait");
+//   ptnet::GaitTrialResult r = ptnet::run_gait_trial(trials[0], {});  // plates vs simulator vs naive
+//   ptnet::write_physics_report({r}, "physics", /*force=*/false);     // results.json + index.html
+//
+// Units: N, s, m; BW = body weight (m g). Vertical is the lab's vertical
+// axis of the marker file (detected, see ptnet/markers.hpp).
+//
+// Dimension legend: T simulated frames, N plate samples, P plates.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ptnet/body_spec.hpp"
+#include "ptnet/motion.hpp"
+#include "ptnet/sim.hpp"
+
+namespace ptnet {
+
+// ------------------------------------------------------------ force plates
+
+// Force plates of an OpenSim storage file (.mot / .sto: a header ending in
+// "endheader", named columns, one row per sample). A plate is every group of
+// columns PREFIX + vx vy vz px py pz whose prefix holds "force"
+// ("ground_force_", "1_ground_force_", "ground_force_r_"); other columns are
+// ignored. Lab axes and units as the file (N, m).
+struct ForcePlates {
+  struct Plate {
+    std::string prefix;
+    std::vector<Eigen::Vector3d> force_n;  // [N]
+    std::vector<Eigen::Vector3d> cop_m;    // [N]
+  };
+  std::vector<double> time_s;  // [N], increasing
+  std::vector<Plate> plates;   // [P]
+  std::string source;
+};
+ForcePlates parse_grf_mot(std::string_view text, const std::string& source);
+ForcePlates read_grf_mot(const std::string& path);
+
+// --------------------------------------------------------- simulated forces
+
+// The simulated vertical ground reaction per frame: total and per foot, in N
+// and BW, and the centre of pressure along each loaded foot (0 heel .. 1 toe).
+struct ForceTable {
+  double mass_kg = 0;
+  std::vector<double> time_s;                 // [T] the motion's clock (Motion::start_s + t / fps)
+  std::vector<double> total_n;                // [T] on and off the mat, every body part
+  std::vector<std::array<double, 2>> foot_n;  // [T] [left, right]
+  std::vector<std::array<double, 2>> cop_u;   // [T] [left, right]; NaN: foot unloaded
+};
+ForceTable force_table(const std::vector<FrameTrace>& trace, const Motion& motion, const Body& body);
+// Writes the table as an OpenSim storage file (.mot: time, then
+// total_force_vy, total_force_bw, l_/r_ground_force_vy, l_/r_force_bw,
+// l_/r_cop_u) or as CSV (.csv, the same columns), atomically; refuses to
+// overwrite unless `force`.
+void write_force_table(const ForceTable& table, const std::string& path, bool force);
+
+// ------------------------------------------------------------------ gait
+
+// One foot's contact: a run of samples above the contact threshold, its
+// ends interpolated to where the force crosses it.
+struct Contact {
+  int foot = 0;                  // 0 left, 1 right
+  double start_s = 0, end_s = 0;
+  double peak_n = 0;             // largest force in the contact
+  double impulse_ns = 0;         // integral of the force over the contact (trapezoids)
+  double loading_rate_n_s = 0;   // 20 % -> 80 % of the peak on the rising edge, over its duration
+};
+// The contacts of a force series (time_s and force_n of equal length).
+std::vector<Contact> find_contacts(const std::vector<double>& time_s, const std::vector<double>& force_n,
+                                   double threshold_n, int foot);
+
+// A trial of a gait lab: markers, plates and the subject.
+struct GaitTrial {
+  std::string name;
+  std::string markers, static_markers, plates;  // paths; static may be ""
+  std::string marker_map;                      // "": chosen
+  BodySpec body;                               // the subject (sex, stature, mass)
+};
+// A trials CSV (docs/physics.md): columns trial, markers, plates, sex,
+// height_cm, weight_kg; static and marker_map optional. Paths relative to
+// `data_dir` ("": the CSV's folder).
+std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir);
+
+struct PhysicsBenchOptions {
+  double fps = 0;             // simulation rate; 0: the marker file's
+  SimOptions sim;             // how to simulate (ideal sensor; the mat follows the body)
+  double contact_n = 20;      // a foot is in contact above this force (N)
+  double flight_bw = 0.05;    // a frame is in flight below this total force (BW)
+  double assign_m = 0.15;     // a plate's force belongs to the foot within this distance of its CoP
+  PhysicsBenchOptions();
+};
+
+// One source of a vertical force (the plates, the simulator, the naive
+// reference) on the trial's frames, and its figures against the plates.
+struct ForceSource {
+  std::string name;
+  std::vector<double> total_bw;                // [T]
+  std::vector<std::array<double, 2>> foot_bw;  // [T] [left, right]
+  std::vector<std::array<double, 2>> cop_u;    // [T] NaN: unloaded or unknown
+  std::vector<Contact> contacts;
+  // Against the plates (NaN for the plates themselves):
+  double rmse_bw = NAN;           // total force, over the compared frames
+  double peak_error_pct = NAN;    // mean |peak - plates' peak| / plates' peak over matched contacts
+  double stance_error_ms = NAN;   // mean |stance - plates' stance|
+  double loading_rate_error_pct = NAN;
+  double stride_impulse_error_pct = NAN;  // mean |impulse - plates'| over the plates' strides
+  double flight_recall = NAN;     // fraction of the plates' flight frames below flight_bw here
+  double cop_rms = NAN;           // CoP along the foot in single stance, RMS difference (foot lengths)
+  int matched = 0;                // contacts matched to the plates'
+};
+
+struct GaitTrialResult {
+  GaitTrial trial;
+  double fps = 0;
+  std::vector<double> time_s;  // [T]
+  ForceSource plates, simulated, naive;
+  int flight_frames = 0;       // the plates' frames below flight_bw
+  int single_stance_frames = 0;
+  double belt_mps = 0;         // the treadmill belt removed
+  ForceTable table;            // the simulator's forces (write_force_table)
+};
+GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions& options);
+
+// `out_dir`/results.json, index.html (force against time, per trial) and
+// <trial>_sim.mot; refuses to overwrite unless `force`.
+void write_physics_report(const std::vector<GaitTrialResult>& results, const std::string& out_dir, bool force);
+
+}  // namespace ptnet

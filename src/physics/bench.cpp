@@ -1,0 +1,199 @@
+// The physics bench: a gait-lab trial simulated on a body of the subject's
+// sex, stature and mass, its forces set beside the trial's force plates and
+// beside the naive reference (body weight shared by the feet the simulator
+// puts in contact), on the trial's clock.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "physics_internal.hpp"
+#include "ptnet/anthropometry.hpp"
+#include "ptnet/csv.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/markers.hpp"
+#include "ptnet/strings.hpp"
+
+namespace ptnet {
+namespace fs = std::filesystem;
+
+PhysicsBenchOptions::PhysicsBenchOptions() {
+  sim.placement = Placement::follow;
+  sim.sensor = ideal_sensor();
+}
+
+std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir) {
+  const CsvTable t = read_csv(csv);
+  const std::string columns = "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map]";
+  const int c_trial = t.required("trial", columns), c_markers = t.required("markers", columns),
+            c_plates = t.required("plates", columns), c_sex = t.required("sex", columns),
+            c_height = t.required("height_cm", columns), c_weight = t.required("weight_kg", columns),
+            c_static = t.column("static"), c_map = t.column("marker_map");
+  const fs::path base = data_dir.empty() ? fs::path(csv).parent_path() : fs::path(data_dir);
+  auto path = [&](const std::string& f) {
+    return f.empty() || fs::path(f).is_absolute() ? f : (base / f).lexically_normal().string();
+  };
+  std::vector<GaitTrial> out;
+  for (const CsvRow& row : t.rows) {
+    auto get = [&](int c) -> const std::string& { return CsvTable::field(row, c); };
+    GaitTrial g;
+    g.name = get(c_trial);
+    if (g.name.empty()) throw Error::at(csv, row.line, "a trial name", "an empty field");
+    g.markers = path(get(c_markers));
+    g.plates = path(get(c_plates));
+    g.static_markers = path(get(c_static));
+    g.marker_map = get(c_map);
+    g.body = parse_body_fields(csv, row.line, g.name, get(c_sex), get(c_height), get(c_weight));
+    g.body.role = "original";
+    for (const std::string* f : {&g.markers, &g.plates, &g.static_markers})
+      if (!f->empty() && !fs::is_regular_file(*f))
+        throw Error(csv + ":" + std::to_string(row.line) + ": file " + escaped(*f, 200) + " not found",
+                    ErrorKind::not_found);
+    out.push_back(std::move(g));
+  }
+  if (out.empty()) throw Error::in(csv, "no trials listed after the header");
+  return out;
+}
+
+namespace {
+
+using V2 = Eigen::Vector2d;
+
+// Distance from p to the segment a-b (horizontal).
+double segment_distance(const V2& p, const V2& a, const V2& b) {
+  const V2 d = b - a;
+  const double s = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (a + s * d - p).norm();
+}
+
+// The plates per foot at their own rate: vertical force (N) and the force
+// times the CoP along the foot (N), each plate's force given to the foot
+// nearest its CoP (none beyond assign_m).
+struct PlateFeet {
+  std::array<std::vector<double>, 2> force_n, force_u;
+  std::vector<double> total_n;
+};
+
+PlateFeet plate_feet(const ForcePlates& fp, const Motion& lab, int up, const PhysicsBenchOptions& o) {
+  const std::size_t N = fp.time_s.size();
+  PlateFeet out;
+  out.total_n.assign(N, 0.0);
+  for (auto* v : {&out.force_n[0], &out.force_n[1], &out.force_u[0], &out.force_u[1]}) v->assign(N, 0.0);
+  // Lab (Y up: x, y, z) -> world (z, x, y), as the marker file's motion.
+  auto horizontal = [&](const Eigen::Vector3d& p) { return up == 1 ? V2(p.z(), p.x()) : V2(p.x(), p.y()); };
+  for (std::size_t k = 0; k < N; ++k) {
+    const int f = std::clamp(int(std::lround((fp.time_s[k] - lab.start_s) * lab.fps)), 0, lab.size() - 1);
+    std::array<std::array<Eigen::Vector3d, 2>, 2> ends{foot_ends(lab.frames[std::size_t(f)], 0),
+                                                       foot_ends(lab.frames[std::size_t(f)], 1)};
+    for (const auto& plate : fp.plates) {
+      const double fv = plate.force_n[k][up];
+      out.total_n[k] += fv;
+      if (!(fv > o.contact_n)) continue;
+      const V2 cop = horizontal(plate.cop_m[k]);
+      double best = o.assign_m;
+      int foot = -1;
+      for (int s = 0; s < 2; ++s) {
+        const double d = segment_distance(cop, ends[s][0].head<2>(), ends[s][1].head<2>());
+        if (d < best) best = d, foot = s;
+      }
+      if (foot < 0) continue;
+      const V2 heel = ends[foot][0].head<2>(), axis = ends[foot][1].head<2>() - heel;
+      const double u = axis.squaredNorm() > 0 ? (cop - heel).dot(axis) / axis.squaredNorm() : NAN;
+      out.force_n[foot][k] += fv;
+      out.force_u[foot][k] += fv * u;
+    }
+  }
+  return out;
+}
+
+ForceSource plates_source(const ForcePlates& fp, const PlateFeet& pf, const std::vector<double>& time_s, double dt,
+                          double bw, const PhysicsBenchOptions& o) {
+  ForceSource s;
+  s.name = "plates";
+  const std::vector<double> total = detail::resample_box(fp.time_s, pf.total_n, time_s, dt);
+  std::array<std::vector<double>, 2> f, fu;
+  for (int k = 0; k < 2; ++k) {
+    f[k] = detail::resample_box(fp.time_s, pf.force_n[k], time_s, dt);
+    fu[k] = detail::resample_box(fp.time_s, pf.force_u[k], time_s, dt);
+    for (const Contact& c : find_contacts(fp.time_s, pf.force_n[k], o.contact_n, k)) s.contacts.push_back(c);
+  }
+  for (std::size_t t = 0; t < time_s.size(); ++t) {
+    s.total_bw.push_back(total[t] / bw);
+    std::array<double, 2> fb{}, u{};
+    for (int k = 0; k < 2; ++k) {
+      fb[k] = f[k][t] / bw;
+      u[k] = f[k][t] > o.contact_n ? fu[k][t] / f[k][t] : NAN;
+    }
+    s.foot_bw.push_back(fb);
+    s.cop_u.push_back(u);
+  }
+  std::sort(s.contacts.begin(), s.contacts.end(), [](const Contact& a, const Contact& b) { return a.start_s < b.start_s; });
+  return s;
+}
+
+// The simulator's (naive false) or the naive reference's (true) force.
+ForceSource model_source(const ForceTable& table, double bw, bool naive, const PhysicsBenchOptions& o) {
+  ForceSource s;
+  s.name = naive ? "naive" : "simulated";
+  std::array<std::vector<double>, 2> feet;
+  for (std::size_t t = 0; t < table.time_s.size(); ++t) {
+    const bool on[2] = {table.foot_n[t][0] > o.contact_n, table.foot_n[t][1] > o.contact_n};
+    const int count = on[0] + on[1];
+    std::array<double, 2> fb{}, u{};
+    for (int k = 0; k < 2; ++k) {
+      fb[k] = naive ? (on[k] ? 1.0 / count : 0.0) : table.foot_n[t][std::size_t(k)] / bw;
+      u[k] = naive ? (on[k] ? 0.5 : NAN) : table.cop_u[t][std::size_t(k)];
+      feet[k].push_back(fb[k] * bw);
+    }
+    s.total_bw.push_back(naive ? (count ? 1.0 : 0.0) : table.total_n[t] / bw);
+    s.foot_bw.push_back(fb);
+    s.cop_u.push_back(u);
+  }
+  for (int k = 0; k < 2; ++k)
+    for (const Contact& c : find_contacts(table.time_s, feet[k], o.contact_n, k)) s.contacts.push_back(c);
+  std::sort(s.contacts.begin(), s.contacts.end(), [](const Contact& a, const Contact& b) { return a.start_s < b.start_s; });
+  return s;
+}
+
+}  // namespace
+
+GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions& o) {
+  const Trc trc = read_trc(trial.markers);
+  MotionOptions mo;
+  mo.fps = o.fps > 0 ? o.fps : trc.rate_hz;
+  mo.static_markers = trial.static_markers;
+  mo.marker_map = trial.marker_map;
+  MarkerReport report;
+  const Motion source = motion_from_trc(trc, mo, &report);
+  mo.remove_belt = false;
+  const Motion lab = motion_from_trc(trc, mo);  // the lab's positions: where the plates' CoP is
+  const Body body(trial.body);
+  const double h = trial.body.height_cm;
+  std::vector<FrameTrace> trace;
+  simulate(retarget(source, h), body, o.sim, place_copy(source, h, o.sim), &trace);
+
+  GaitTrialResult r;
+  r.trial = trial;
+  r.fps = source.fps;
+  r.belt_mps = report.belt_speed_mps;
+  r.table = force_table(trace, source, body);
+  r.time_s = r.table.time_s;
+  const double bw = body.mass_kg() * anthropometry::kGravity;
+  const ForcePlates fp = read_grf_mot(trial.plates);
+  const int up = report.up_axis == "y" ? 1 : 2;
+  const PlateFeet pf = plate_feet(fp, lab, up, o);
+  r.plates = plates_source(fp, pf, r.time_s, 1 / r.fps, bw, o);
+  r.simulated = model_source(r.table, bw, false, o);
+  r.naive = model_source(r.table, bw, true, o);
+  detail::CompareOptions co;
+  co.flight_bw = o.flight_bw;
+  co.contact_bw = o.contact_n / bw;
+  detail::compare_with_plates(r.simulated, r.plates, r.time_s, co);
+  detail::compare_with_plates(r.naive, r.plates, r.time_s, co);
+  for (std::size_t t = 0; t < r.time_s.size(); ++t) {
+    r.flight_frames += r.plates.total_bw[t] < o.flight_bw;
+    r.single_stance_frames += (r.plates.foot_bw[t][0] > co.contact_bw) != (r.plates.foot_bw[t][1] > co.contact_bw);
+  }
+  return r;
+}
+
+}  // namespace ptnet

