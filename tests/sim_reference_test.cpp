@@ -1,6 +1,7 @@
-// The fast rasteriser (src/sim: detail::Rasteriser, spans, affine stepping,
-// SSE2, a histogram for the sink level) held to the plain one of
-// tests/support/reference_rasteriser over poses that reach its paths: two
+// The fast rasteriser and foundation (src/sim: detail::Rasteriser and
+// Foundation; spans, affine stepping, SSE2, a histogram for the sink
+// level) held to the plain ones of tests/support/reference_rasteriser over
+// poses that reach their paths: two
 // feet, one foot, a heel raised, a yawed stance, tilt towards the toes and
 // sideways (clamped at 0.6 standard deviations), a load beyond what the
 // maximum sink carries, a foot off the mat's side, toes off its end, a
@@ -98,22 +99,32 @@ struct Fast {
   FrameTrace trace;
 };
 
-Fast run_fast(detail::Rasteriser& r, const Frame& f, const SimOptions& o) {
+// The simulator's rasteriser and foundation for one option set, reused
+// across frames as simulate() reuses them.
+struct FastPath {
+  explicit FastPath(const SimOptions& o)
+      : raster(o.mat, o.subsamples, o.compliance_m + o.max_sink_m),
+        foundation(raster.depth().grid, o.compliance_m, o.max_sink_m) {}
+  detail::Rasteriser raster;
+  detail::Foundation foundation;
+};
+
+Fast run_fast(FastPath& r, const Frame& f, const SimOptions& o) {
   const PosedBody posed = pose_body(*f.body, f.pose);
   const double k = o.stiffness_kpa_per_mm * 1e6;
   const Eigen::Vector2d* target = f.target ? &*f.target : nullptr;
   Fast out;
   out.kpa.assign(std::size_t(o.mat.cells()), 0.0f);
   out.kpa_untraced = out.kpa;
-  r.rasterise(*f.body, posed, true);
-  r.distribute(f.load_n, k, target, out.kpa.data(), &out.trace);
-  r.rasterise(*f.body, posed, false);
-  r.distribute(f.load_n, k, target, out.kpa_untraced.data(), nullptr);
+  r.raster.rasterise(*f.body, posed, true);
+  r.foundation.distribute(r.raster.depth(), f.load_n, k, target, out.kpa.data(), &out.trace);
+  r.raster.rasterise(*f.body, posed, false);
+  r.foundation.distribute(r.raster.depth(), f.load_n, k, target, out.kpa_untraced.data(), nullptr);
   return out;
 }
 
 // The frame's maps and traces compared, within the bounds of the top.
-void check_frame(detail::Rasteriser& r, const Frame& f, const SimOptions& o, Worst& worst) {
+void check_frame(FastPath& r, const Frame& f, const SimOptions& o, Worst& worst) {
   const std::string at =
       f.name + " on " + f.body->spec().id + " at S = " + std::to_string(o.subsamples);
   const Fast fast = run_fast(r, f, o);
@@ -285,7 +296,7 @@ TEST(SimReference, FastPathMatchesThePlainOne) {
   for (int s = 1; s <= 5; ++s) {
     SimOptions o;
     o.subsamples = s;
-    detail::Rasteriser r(o.mat, s, o.compliance_m, o.max_sink_m);  // reused, as simulate() does
+    FastPath r(o);
     for (const Frame& f : frames) check_frame(r, f, o, worst);
   }
   std::printf(
@@ -316,7 +327,7 @@ TEST(SimReference, OffTheMatEachSurfaceRecordCountsToday) {
         .trace.foot[0]
         .force_n;
   };
-  detail::Rasteriser r(o.mat, o.subsamples, o.compliance_m, o.max_sink_m);
+  FastPath r(o);
   const Fast fast = run_fast(
       r, {"kneel off the end", &body, test::kneel_pose(body, -0.6, 0), W, std::nullopt}, o);
   EXPECT_NEAR(fast.trace.foot[0].force_n, left_sole_n(OffMat::each_record), 0.05);
