@@ -9,7 +9,8 @@ packages=(cmake g++ make ccache pkg-config
           chromium fonts-dejavu-core  # the report-page tests load index.html in headless chromium
           pybind11-dev python3-dev python3-numpy python3-h5py  # the Python module and its tests (/usr/bin/python3)
           python3-torch  # ptnet export's weights in PyTorch: python/ptnet_torch.py and its tests (~100 MB)
-          dpkg-dev)  # make package: dpkg-shlibdeps finds the .deb's Depends
+          dpkg-dev  # make package: dpkg-shlibdeps finds the .deb's Depends
+          universal-ctags)  # scripts/check-sizes.sh (ctest check_sizes): the functions' lengths
 # make fuzz only: clang with libFuzzer and the sanitizer runtimes.
 if [ "${PTNET_FUZZ_DEPS:-0}" = 1 ]; then packages=(clang libclang-rt-14-dev); fi
 missing=()

@@ -7,9 +7,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
+#include "ptnet/body.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/pressure.hpp"
 
@@ -56,6 +58,47 @@ inline void rotate_pose(Pose& p, double yaw, double cx = 0, double cy = 0) {
     q.x() = cx + c * x - s * y;
     q.y() = cy + s * x + c * y;
   }
+}
+
+// A kneeling lunge of `body` at (x, y) facing +x: the left foot flat in
+// front, the right shank along the floor and the left hand on it beside the
+// foot. The right shank's and the left hand's capsules reach sink_m below
+// z = 0 (the sole stands on z = 0), so that the knee, the hand and the sole
+// all carry load: capsule contact next to a foot.
+inline Pose kneel_pose(const Body& body, double x = 0, double y = 0, double sink_m = 0.004) {
+  const double H = body.height_m();
+  Pose p;
+  auto at = [&](double px, double py, double pz) { return Eigen::Vector3d(x + px, y + py, pz); };
+  p[kPelvis] = at(0, 0, 0.33 * H);
+  p[kSpine] = at(0.01 * H, 0, 0.40 * H);
+  p[kChest] = at(0.03 * H, 0, 0.52 * H);
+  p[kNeck] = at(0.05 * H, 0, 0.61 * H);
+  p[kHead] = at(0.06 * H, 0, 0.66 * H);
+  const double yl = 0.0475 * H, ys = 0.1295 * H;
+  p[kLeftHip] = at(0, yl, 0.33 * H);
+  p[kLeftKnee] = at(0.22 * H, yl, 0.285 * H);
+  p[kLeftAnkle] = at(0.20 * H, yl, 0.039 * H);
+  p[kLeftToe] = at(0.279 * H, yl, 0.009 * H);
+  p[kRightHip] = at(0, -yl, 0.33 * H);
+  p[kRightKnee] = at(-0.05 * H, -yl, 0.05 * H);
+  p[kRightAnkle] = at(-0.296 * H, -yl, 0.05 * H);
+  p[kRightToe] = at(-0.34 * H, -yl, 0.0);
+  p[kLeftShoulder] = at(0.05 * H, ys, 0.61 * H);
+  p[kLeftElbow] = at(0.12 * H, 0.15 * H, 0.42 * H);
+  p[kLeftWrist] = at(0.17 * H, 0.16 * H, 0.25 * H);
+  p[kRightShoulder] = at(0.05 * H, -ys, 0.61 * H);
+  p[kRightElbow] = at(0.05 * H, -0.13 * H, 0.45 * H);
+  p[kRightWrist] = at(0.07 * H, -0.13 * H, 0.31 * H);
+  // Lowers joints so that a segment's capsule bottoms out at -sink_m.
+  auto lower = [&](int segment, std::initializer_list<int> joints) {
+    const PosedBody posed = pose_body(body, p);
+    const SegmentShape& s = body.segments()[segment];
+    const double bottom = std::min(posed.a[segment].z() - s.radius_a_m, posed.b[segment].z() - s.radius_b_m);
+    for (int j : joints) p[j].z() -= bottom + sink_m;
+  };
+  lower(kSegRightShank, {kRightKnee, kRightAnkle, kRightToe});
+  lower(kSegLeftHand, {kLeftElbow, kLeftWrist});
+  return p;
 }
 
 inline Motion still_motion(const Pose& pose, int frames = 30, double fps = 30) {

@@ -33,25 +33,26 @@
 //     (on its copy at a reference height) and scaled to every copy, so that
 //     which frames touch the ground does not depend on the body.
 //  2. depth from below: the lowest body surface above each of S x S samples
-//     per cell (foot soles, lower surfaces of the segment capsules).
+//     per cell (foot soles, lower surfaces of the segment capsules), on the
+//     mat and beside it.
 //  3. contact: a frame has ground contact when some surface lies within the
 //     compliance band (default 20 mm) of the ground; otherwise it is airborne.
 //  4. load: F = m (g + a_z), a_z the low-passed vertical acceleration of the
-//     segment-mass centre of mass, clamped at 0; zero with no contact. The body
-//     sinks into an elastic foundation (sole tissue and mat foam, linear
-//     stiffness k) until it carries F: the sink level s solves
-//     sum_samples k max(0, s - z) dA = F, at most max_sink_m above the lowest
-//     surface point; each cell's pressure is proportional to its
-//     mean penetration max(0, s - z), scaled so that sum(pressure x cell area)
-//     = F for a body wholly on the mat, before the sensor model. So a heavier
-//     load sinks deeper and widens the contact (toe-off, heel strike) instead
-//     of piling onto a few cells. Moments balance too (balance_moments): the
-//     foundation tilts so that the centre of pressure moves towards the
-//     zero-moment point of the centre of mass, x_com - z_com a_xy / (g + a_z)
-//     (within 0.6 standard deviations of the contact): weight shifts from
-//     heel to toe as the body passes over the foot, and between the feet.
-//     Contact off the mat takes its share but is not sensed.
-//  5. sensor: crosstalk blur, saturation, noise, activation threshold,
+//     segment-mass centre of mass, clamped at 0; zero with no contact.
+//  5. elastic foundation: the body sinks into the sole tissue and mat foam
+//     (linear stiffness k) until it carries F, in four steps. Sink level: s
+//     solves sum_samples k max(0, s - z) dA = F, at most max_sink_m above the
+//     lowest surface point. Penetration: each cell's mean max(0, s - z).
+//     Tilt (balance_moments): the penetrations weighted so that the centre
+//     of pressure moves towards the zero-moment point of the centre of mass,
+//     x_com - z_com a_xy / (g + a_z) (within 0.6 standard deviations of the
+//     contact): weight shifts from heel to toe as the body passes over the
+//     foot, and between the feet. Load scaling: sum(pressure x cell area) = F
+//     over all contact, before the sensor model; contact off the mat takes
+//     its share but is not sensed. So a heavier load sinks deeper and widens
+//     the contact (toe-off, heel strike) instead of piling onto a few cells.
+//     With a trace, who carries what (FrameTrace below).
+//  6. sensor: crosstalk blur, saturation, noise, activation threshold,
 //     quantisation.
 // Same options (seed included): same bytes. Another seed changes only the noise.
 #pragma once

@@ -1,17 +1,19 @@
-// Depth from below: the lowest body surface over S x S samples per mat cell,
-// and each cell's mean penetration into the compliance band.
+// Depth from below (Rasteriser): the lowest body surface over S x S
+// samples per mat cell, on and off the mat, for the elastic foundation
+// (foundation.cpp) to sink into.
 //
 // Surfaces: the sole patches (a plane plus the soft-tissue height table of
 // ptnet::SoleSurface, sampled analytically per sample) and the lower surfaces
 // of the segment capsules (a chain of spheres along each tapered capsule,
 // spaced at a third of the smaller radius: the envelope sags < r / 70).
 // Only surfaces whose lowest point can reach the sink level are rasterised;
-// a sole patch visits, row by row, only the samples its table spans.
+// a sole patch visits, row by row, only the samples its table spans, the
+// samples on the mat four at a time (depth_samples_sse2, beside its scalar
+// twin depth_samples).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include <Eigen/LU>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -23,43 +25,43 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 }
 
-Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double compliance_m, double max_sink_m)
-    : mat_(mat),
-      s_(subsamples),
-      band_(float(compliance_m)),
-      max_sink_(float(max_sink_m)),
-      reach_(float(compliance_m + max_sink_m)),
-      ds_(mat.pitch_m / subsamples),
-      half_l_(0.5 * mat.rows * mat.pitch_m),
-      half_w_(0.5 * mat.cols * mat.pitch_m),
-      ns_rows_(mat.rows * subsamples),
-      ns_cols_(mat.cols * subsamples),
-      zbuf_(std::size_t(ns_rows_) * ns_cols_, kInf),
-      hit_(std::size_t(ns_cols_), 0),
-      span0_(std::size_t(ns_rows_), ns_cols_),
-      span1_(std::size_t(ns_rows_), -1),
-      cell0_(std::size_t(mat.rows), 0),
-      cell1_(std::size_t(mat.rows), -1) {
-  di0_ = ns_rows_, di1_ = -1;
-  zlo_ = kInf;
-}
+SampleGrid::SampleGrid(const MatSpec& mat, int subsamples)
+    : mat(mat),
+      s(subsamples),
+      ds(mat.pitch_m / subsamples),
+      half_l(0.5 * mat.rows * mat.pitch_m),
+      half_w(0.5 * mat.cols * mat.pitch_m),
+      rows(mat.rows * subsamples),
+      cols(mat.cols * subsamples) {}
+
+DepthMap::DepthMap(const SampleGrid& grid)
+    : grid(grid),
+      z(std::size_t(grid.rows) * grid.cols, kInf),
+      row0(grid.rows),
+      row1(-1),
+      span0(std::size_t(grid.rows), grid.cols),
+      span1(std::size_t(grid.rows), -1),
+      zlo(kInf) {}
+
+Rasteriser::Rasteriser(const MatSpec& mat, int subsamples, double reach_m)
+    : reach_(float(reach_m)), d_(SampleGrid(mat, subsamples)) {}
 
 // Sample i has its centre at X = L/2 - (i + 0.5) ds.
 void Rasteriser::row_range(double x0, double x1, int& lo, int& hi) const {
-  lo = int(std::ceil((half_l_ - x1) / ds_ - 0.5));
-  hi = int(std::floor((half_l_ - x0) / ds_ - 0.5));
+  lo = int(std::ceil((d_.grid.half_l - x1) / d_.grid.ds - 0.5));
+  hi = int(std::floor((d_.grid.half_l - x0) / d_.grid.ds - 0.5));
 }
 void Rasteriser::col_range(double y0, double y1, int& lo, int& hi) const {
-  lo = int(std::ceil((half_w_ - y1) / ds_ - 0.5));
-  hi = int(std::floor((half_w_ - y0) / ds_ - 0.5));
+  lo = int(std::ceil((d_.grid.half_w - y1) / d_.grid.ds - 0.5));
+  hi = int(std::floor((d_.grid.half_w - y0) / d_.grid.ds - 0.5));
 }
 
 void Rasteriser::touch(int i0, int i1, int j0, int j1) {
-  i0 = std::max(i0, 0), i1 = std::min(i1, ns_rows_ - 1);
-  j0 = std::max(j0, 0), j1 = std::min(j1, ns_cols_ - 1);
+  i0 = std::max(i0, 0), i1 = std::min(i1, d_.grid.rows - 1);
+  j0 = std::max(j0, 0), j1 = std::min(j1, d_.grid.cols - 1);
   if (i0 > i1 || j0 > j1) return;
-  di0_ = std::min(di0_, i0), di1_ = std::max(di1_, i1);
-  for (int i = i0; i <= i1; ++i) span0_[i] = std::min(span0_[i], j0), span1_[i] = std::max(span1_[i], j1);
+  d_.row0 = std::min(d_.row0, i0), d_.row1 = std::max(d_.row1, i1);
+  for (int i = i0; i <= i1; ++i) d_.span0[i] = std::min(d_.span0[i], j0), d_.span1[i] = std::max(d_.span1[i], j1);
 }
 
 namespace {
@@ -86,6 +88,161 @@ void clip_affine(double c, double a, double inv_a, double lo_v, double hi_v, int
 }
 }  // namespace
 
+// A sole patch's affine maps from a sample's position (X, Y) to the plane
+// height z, the table row fi (along u) and column fj (along v). Along a row
+// of samples each changes by a constant per sample (dz, dfi, dfj).
+struct PatchMap {
+  PatchMap(const SoleSurface& sole, const SolePatch& p, double ds) {
+    const Eigen::Vector3d& n = p.up;
+    ox = p.origin.x(), oy = p.origin.y(), oz = p.origin.z();
+    zx = -n.x() / n.z(), zy = -n.y() / n.z();
+    sx = p.forward.x() + p.forward.z() * zx, sy = p.forward.y() + p.forward.z() * zy;
+    wx = p.left.x() + p.left.z() * zx, wy = p.left.y() + p.left.z() * zy;
+    iu = (sole.nu - 1) / sole.length_m;  // rows per metre along u
+    iv = p.medial_sign * (sole.nv - 1) / ((sole.v_max - sole.v_min) * sole.width_m);
+    fi0 = p.u_origin * (sole.nu - 1), fj0 = -sole.v_min / (sole.v_max - sole.v_min) * (sole.nv - 1);
+    fi_lo = p.u_begin * (sole.nu - 1) - 0.5, fi_hi = p.u_end * (sole.nu - 1) + 0.5;
+    inv_nz = float(1.0 / n.z());
+    inv_nu = float(1.0 / (sole.nu - 1));
+    table = sole.height_m.data();
+    nu = sole.nu, nv = sole.nv;
+    dfi = -iu * sy * ds, dfj = -iv * wy * ds, dz = -zy * ds;
+    inv_dfi = 1 / dfi, inv_dfj = 1 / dfj, inv_dz = 1 / dz;  // used where |d| >= 1e-12
+  }
+  double ox, oy, oz;          // the patch's origin (m)
+  double zx, zy;              // plane height per m of X, Y
+  double sx, sy, wx, wy;      // forward and left offsets along the plane per m of X, Y
+  double iu, iv, fi0, fj0;    // table rows and columns per m along forward and left; at the origin
+  double fi_lo, fi_hi;        // the rows the patch covers, half a row either side
+  float inv_nz, inv_nu;       // 1 / up.z, 1 / (nu - 1)
+  const float* table;         // SoleSurface::height_m [nu, nv]
+  int nu, nv;
+  double dfi, dfj, dz;        // per sample along a row
+  double inv_dfi, inv_dfj, inv_dz;
+};
+
+// One row of samples of a patch: its values at the row's first sample j0
+// (then stepped by k = j - j0) and the samples [lo, hi] it records.
+struct PatchRow {
+  double fi_a, fj_a, z_a;
+  int lo, hi;
+
+  // Whether sample k maps onto the patch's rows and the table.
+  bool on_table(const PatchMap& m, int k) const {
+    const double fi = fi_a + m.dfi * k;
+    if (fi < m.fi_lo || fi >= m.fi_hi) return false;
+    const double fj = fj_a + m.dfj * k;
+    const int ti = int(fi + 0.5), tj = int(fj + 0.5);
+    return ti >= 0 && ti < m.nu && fj >= -0.5 && tj < m.nv;
+  }
+  // The table height at sample k (m above the plane; kOutside: not foot), and its row fi.
+  float height(const PatchMap& m, int k, double& fi) const {
+    fi = fi_a + m.dfi * k;
+    const double fj = fj_a + m.dfj * k;
+    return m.table[std::size_t(int(fi + 0.5)) * m.nv + std::size_t(int(fj + 0.5))];
+  }
+};
+
+namespace {
+
+// The row of a patch whose first sample j0 lies at (dX, dY0) from the
+// patch's origin, and the samples k in [0, width] it records: those on the
+// patch's table whose plane is below the reach. False when there are none.
+bool patch_row(const PatchMap& m, double dX, double dY0, int width, float reach, PatchRow& row) {
+  row.fi_a = m.fi0 + m.iu * (m.sx * dX + m.sy * dY0);
+  row.fj_a = m.fj0 + m.iv * (m.wx * dX + m.wy * dY0);
+  row.z_a = m.oz + m.zx * dX + m.zy * dY0;
+  int lo = 0, hi = width;
+  clip_affine(row.fi_a, m.dfi, m.inv_dfi, m.fi_lo, m.fi_hi, lo, hi);
+  clip_affine(row.fj_a, m.dfj, m.inv_dfj, -0.5, m.nv - 0.5, lo, hi);
+  // The table's heights are >= 0: where the plane alone is at or above
+  // the reach, no sample can be recorded (kept: a sample either side).
+  if (std::abs(m.dz) < 1e-12) {
+    if (!(row.z_a < reach)) return false;
+  } else {
+    const int kz = floored((double(reach) - row.z_a) * m.inv_dz);  // the plane meets the reach
+    if (m.dz > 0)
+      hi = std::min(hi, kz + 1);
+    else
+      lo = std::max(lo, kz);
+  }
+  // The samples the exact tests accept are one interval of k: fi and fj
+  // are monotone in k (in floating point too), and each test is a
+  // threshold on one of them. Narrowed to it from both ends (a sample or
+  // two: the clips above are conservative by one), the loops test nothing
+  // per sample.
+  while (lo <= hi && !row.on_table(m, lo)) ++lo;
+  while (hi >= lo && !row.on_table(m, hi)) --hi;
+  row.lo = lo, row.hi = hi;
+  return lo <= hi;
+}
+
+// Samples k in [k0, k1] of a patch row on the mat (zrow: the sample row,
+// the row's first sample at j0), one by one: each keeps the lowest of its
+// height and the patch's; a height out of reach (kOutside, off the foot,
+// included) becomes +inf, which changes nothing. zlo: the lowest so far.
+void depth_samples(const PatchMap& m, const PatchRow& row, int k0, int k1, float* zrow, int j0, float reach,
+                   float& zlo) {
+  const float inv_nz = m.inv_nz;
+  float lowest = zlo;
+  for (int k = k0; k <= k1; ++k) {
+    double fi;
+    const float h = row.height(m, k, fi);
+    const float z = float(row.z_a + m.dz * k) + h * inv_nz;
+    const float zr = z < reach ? z : kInf;
+    lowest = std::min(lowest, zr);
+    zrow[j0 + k] = std::min(zrow[j0 + k], zr);
+  }
+  zlo = lowest;
+}
+
+#if defined(__SSE2__)
+// depth_samples four samples at a time: the same operations on each (IEEE,
+// no FMA), the table read one by one; _mm_min_ps(b, a) is std::min(a, b).
+// Returns the first sample it did not do (depth_samples does the rest).
+int depth_samples_sse2(const PatchMap& m, const PatchRow& row, int k, int k1, float* zrow, int j0, float reach,
+                       float& zlo) {
+  if (k1 - k < 3) return k;
+  const float* table = m.table;
+  const int nv = m.nv;
+  const __m128d vfi_a = _mm_set1_pd(row.fi_a), vfj_a = _mm_set1_pd(row.fj_a), vz_a = _mm_set1_pd(row.z_a);
+  const __m128d vdfi = _mm_set1_pd(m.dfi), vdfj = _mm_set1_pd(m.dfj), vdz = _mm_set1_pd(m.dz);
+  const __m128d half = _mm_set1_pd(0.5), two = _mm_set1_pd(2.0);
+  const __m128 vinv_nz = _mm_set1_ps(m.inv_nz), vreach = _mm_set1_ps(reach), vinf = _mm_set1_ps(kInf);
+  __m128 vzlo = _mm_set1_ps(zlo);
+  __m128d k01 = _mm_set_pd(double(k + 1), double(k));  // lanes k, k + 1
+  alignas(16) int ti[4], tj[4];
+  for (; k + 3 <= k1; k += 4) {
+    const __m128d k23 = _mm_add_pd(k01, two);
+    const __m128d fi01 = _mm_add_pd(vfi_a, _mm_mul_pd(vdfi, k01)), fi23 = _mm_add_pd(vfi_a, _mm_mul_pd(vdfi, k23));
+    const __m128d fj01 = _mm_add_pd(vfj_a, _mm_mul_pd(vdfj, k01)), fj23 = _mm_add_pd(vfj_a, _mm_mul_pd(vdfj, k23));
+    _mm_store_si128(reinterpret_cast<__m128i*>(ti), _mm_unpacklo_epi64(_mm_cvttpd_epi32(_mm_add_pd(fi01, half)),
+                                                                       _mm_cvttpd_epi32(_mm_add_pd(fi23, half))));
+    _mm_store_si128(reinterpret_cast<__m128i*>(tj), _mm_unpacklo_epi64(_mm_cvttpd_epi32(_mm_add_pd(fj01, half)),
+                                                                       _mm_cvttpd_epi32(_mm_add_pd(fj23, half))));
+    const __m128 h = _mm_set_ps(table[std::size_t(ti[3]) * nv + std::size_t(tj[3])],
+                                table[std::size_t(ti[2]) * nv + std::size_t(tj[2])],
+                                table[std::size_t(ti[1]) * nv + std::size_t(tj[1])],
+                                table[std::size_t(ti[0]) * nv + std::size_t(tj[0])]);
+    const __m128 plane = _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(vz_a, _mm_mul_pd(vdz, k01))),
+                                       _mm_cvtpd_ps(_mm_add_pd(vz_a, _mm_mul_pd(vdz, k23))));
+    const __m128 z = _mm_add_ps(plane, _mm_mul_ps(h, vinv_nz));
+    const __m128 below = _mm_cmplt_ps(z, vreach);
+    const __m128 zr = _mm_or_ps(_mm_and_ps(below, z), _mm_andnot_ps(below, vinf));
+    vzlo = _mm_min_ps(zr, vzlo);
+    float* const dst = zrow + (j0 + k);
+    _mm_storeu_ps(dst, _mm_min_ps(zr, _mm_loadu_ps(dst)));
+    k01 = _mm_add_pd(k23, two);
+  }
+  alignas(16) float lanes[4];
+  _mm_store_ps(lanes, vzlo);
+  for (float l : lanes) zlo = std::min(zlo, l);
+  return k;
+}
+#endif
+
+}  // namespace
+
 bool Rasteriser::patch_box(const SoleSurface& sole, const SolePatch& p, int& i0, int& i1, int& j0, int& j1) const {
   if (p.up.z() < 0.2) return false;  // sole nearly vertical: its edge is not modelled
   // Corners of the patch on its plane; the profile only rises above it.
@@ -107,7 +264,7 @@ bool Rasteriser::patch_box(const SoleSurface& sole, const SolePatch& p, int& i0,
 
 bool Rasteriser::reaches_mat(const Body& body, const PosedBody& posed) const {
   auto on_mat = [&](int i0, int i1, int j0, int j1) {
-    return i0 <= i1 && j0 <= j1 && i1 >= 0 && i0 < ns_rows_ && j1 >= 0 && j0 < ns_cols_;
+    return i0 <= i1 && j0 <= j1 && i1 >= 0 && i0 < d_.grid.rows && j1 >= 0 && j0 < d_.grid.cols;
   };
   int i0, i1, j0, j1;
   for (const auto* foot : {&posed.left_foot, &posed.right_foot})
@@ -130,146 +287,41 @@ bool Rasteriser::reaches_mat(const Body& body, const PosedBody& posed) const {
 void Rasteriser::patch(const SoleSurface& sole, const SolePatch& p, Owner owner) {
   int i0, i1, j0, j1;
   if (!patch_box(sole, p, i0, i1, j0, j1)) return;
-  const Eigen::Vector3d& n = p.up;
-
-  // Affine maps from the sample position (X, Y) to the plane height z, the
-  // table row fi (along u) and column fj (along v).
-  const double ox = p.origin.x(), oy = p.origin.y(), oz = p.origin.z();
-  const double zx = -n.x() / n.z(), zy = -n.y() / n.z();
-  const double sx = p.forward.x() + p.forward.z() * zx, sy = p.forward.y() + p.forward.z() * zy;
-  const double wx = p.left.x() + p.left.z() * zx, wy = p.left.y() + p.left.z() * zy;
-  const double iu = (sole.nu - 1) / sole.length_m;                       // rows per metre along u
-  const double iv = p.medial_sign * (sole.nv - 1) / ((sole.v_max - sole.v_min) * sole.width_m);
-  const double fi0 = p.u_origin * (sole.nu - 1), fj0 = -sole.v_min / (sole.v_max - sole.v_min) * (sole.nv - 1);
-  const double fi_lo = p.u_begin * (sole.nu - 1) - 0.5, fi_hi = p.u_end * (sole.nu - 1) + 0.5;
-  const float inv_nz = float(1.0 / n.z());
-  const float inv_nu = float(1.0 / (sole.nu - 1));
-  const float* table = sole.height_m.data();
-  const int nu = sole.nu, nv = sole.nv;
-  // Along a row of samples, fi, fj and z change by a constant per sample.
-  const double dfi = -iu * sy * ds_, dfj = -iv * wy * ds_, dz = -zy * ds_;
-  const double inv_dfi = 1 / dfi, inv_dfj = 1 / dfj, inv_dz = 1 / dz;  // used where |d| >= 1e-12
-  // Members in locals: the depth stores (float) could alias the float
-  // members, which the loop would then reload per sample.
-  const float reach = reach_;
-  float zlo = zlo_;
+  const SampleGrid& g = d_.grid;
+  const PatchMap m(sole, p, g.ds);
   for (int i = i0; i <= i1; ++i) {
-    const double dX = half_l_ - (i + 0.5) * ds_ - ox;
-    const double dY0 = half_w_ - (j0 + 0.5) * ds_ - oy;
-    // Values at j = j0 (then stepped by j - j0).
-    const double fi_a = fi0 + iu * (sx * dX + sy * dY0);
-    const double fj_a = fj0 + iv * (wx * dX + wy * dY0);
-    const double z_a = oz + zx * dX + zy * dY0;
-    int lo = 0, hi = j1 - j0;
-    clip_affine(fi_a, dfi, inv_dfi, fi_lo, fi_hi, lo, hi);
-    clip_affine(fj_a, dfj, inv_dfj, -0.5, nv - 0.5, lo, hi);
-    // The table's heights are >= 0: where the plane alone is at or above
-    // the reach, no sample can be recorded (kept: a sample either side).
-    if (std::abs(dz) < 1e-12) {
-      if (!(z_a < reach)) continue;
-    } else {
-      const int kz = floored((double(reach) - z_a) * inv_dz);  // the plane meets the reach
-      if (dz > 0)
-        hi = std::min(hi, kz + 1);
-      else
-        lo = std::max(lo, kz);
-    }
-    // The samples the exact tests below accept are one interval of k: fi
-    // and fj are monotone in k (in floating point too), and each test is a
-    // threshold on one of them. Narrowed to it from both ends (a sample or
-    // two: the clips above are conservative by one), the loops test nothing
-    // per sample.
-    auto on_table = [&](int k) {
-      const double fi = fi_a + dfi * k;
-      if (fi < fi_lo || fi >= fi_hi) return false;
-      const double fj = fj_a + dfj * k;
-      const int ti = int(fi + 0.5), tj = int(fj + 0.5);
-      return ti >= 0 && ti < nu && fj >= -0.5 && tj < nv;
-    };
-    while (lo <= hi && !on_table(lo)) ++lo;
-    while (hi >= lo && !on_table(hi)) --hi;
-    if (lo > hi) continue;
-    touch(i, i, j0 + lo, j0 + hi);
-    auto height = [&](int k, double& fi) {
-      fi = fi_a + dfi * k;
-      const double fj = fj_a + dfj * k;
-      return table[std::size_t(int(fi + 0.5)) * nv + std::size_t(int(fj + 0.5))];
-    };
+    PatchRow row;
+    if (!patch_row(m, g.half_l - (i + 0.5) * g.ds - m.ox, g.half_w - (j0 + 0.5) * g.ds - m.oy, j1 - j0, reach_, row))
+      continue;
+    touch(i, i, j0 + row.lo, j0 + row.hi);
     // Samples off the mat (or every sample, with a trace): record().
-    auto record_each = [&](int k0, int k1) {
-      for (int k = k0; k <= k1; ++k) {
-        double fi;
-        const float h = height(k, fi);
-        if (h < SoleSurface::kOutside) {
-          zlo_ = zlo;
-          record(i, j0 + k, float(z_a + dz * k) + h * inv_nz, owner, float(fi) * inv_nu);
-          zlo = zlo_;
-        }
-      }
-    };
-    const bool row_on = i >= 0 && i < ns_rows_ && !trace_;
-    if (!row_on) {
-      record_each(lo, hi);
+    if (!(i >= 0 && i < g.rows) || trace_) {
+      record_samples(m, row, i, j0, row.lo, row.hi, owner);
       continue;
     }
     // Samples on the mat, k in [on_lo, on_hi]: record(), inlined and without
-    // branches; a height out of reach (kOutside, off the foot, included)
-    // becomes +inf, which changes nothing.
-    const int on_lo = std::max(lo, -j0), on_hi = std::min(hi, ns_cols_ - 1 - j0);
-    record_each(lo, std::min(hi, on_lo - 1));
-    float* const zrow = zbuf_.data() + std::size_t(i) * ns_cols_;
+    // branches.
+    const int on_lo = std::max(row.lo, -j0), on_hi = std::min(row.hi, g.cols - 1 - j0);
+    record_samples(m, row, i, j0, row.lo, std::min(row.hi, on_lo - 1), owner);
+    float* const zrow = d_.z.data() + std::size_t(i) * g.cols;
+    float zlo = d_.zlo;
     int k = on_lo;
 #if defined(__SSE2__)
-    // Four samples at a time: the same operations on each (IEEE, no FMA),
-    // the table read one by one; _mm_min_ps(b, a) is std::min(a, b).
-    if (on_hi - on_lo >= 3) {
-      const __m128d vfi_a = _mm_set1_pd(fi_a), vfj_a = _mm_set1_pd(fj_a), vz_a = _mm_set1_pd(z_a);
-      const __m128d vdfi = _mm_set1_pd(dfi), vdfj = _mm_set1_pd(dfj), vdz = _mm_set1_pd(dz);
-      const __m128d half = _mm_set1_pd(0.5), two = _mm_set1_pd(2.0);
-      const __m128 vinv_nz = _mm_set1_ps(inv_nz), vreach = _mm_set1_ps(reach), vinf = _mm_set1_ps(kInf);
-      __m128 vzlo = _mm_set1_ps(zlo);
-      __m128d k01 = _mm_set_pd(double(k + 1), double(k));  // lanes k, k + 1
-      alignas(16) int ti[4], tj[4];
-      for (; k + 3 <= on_hi; k += 4) {
-        const __m128d k23 = _mm_add_pd(k01, two);
-        const __m128d fi01 = _mm_add_pd(vfi_a, _mm_mul_pd(vdfi, k01)), fi23 = _mm_add_pd(vfi_a, _mm_mul_pd(vdfi, k23));
-        const __m128d fj01 = _mm_add_pd(vfj_a, _mm_mul_pd(vdfj, k01)), fj23 = _mm_add_pd(vfj_a, _mm_mul_pd(vdfj, k23));
-        _mm_store_si128(reinterpret_cast<__m128i*>(ti),
-                        _mm_unpacklo_epi64(_mm_cvttpd_epi32(_mm_add_pd(fi01, half)),
-                                           _mm_cvttpd_epi32(_mm_add_pd(fi23, half))));
-        _mm_store_si128(reinterpret_cast<__m128i*>(tj),
-                        _mm_unpacklo_epi64(_mm_cvttpd_epi32(_mm_add_pd(fj01, half)),
-                                           _mm_cvttpd_epi32(_mm_add_pd(fj23, half))));
-        const __m128 h = _mm_set_ps(table[std::size_t(ti[3]) * nv + std::size_t(tj[3])],
-                                    table[std::size_t(ti[2]) * nv + std::size_t(tj[2])],
-                                    table[std::size_t(ti[1]) * nv + std::size_t(tj[1])],
-                                    table[std::size_t(ti[0]) * nv + std::size_t(tj[0])]);
-        const __m128 plane = _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(vz_a, _mm_mul_pd(vdz, k01))),
-                                           _mm_cvtpd_ps(_mm_add_pd(vz_a, _mm_mul_pd(vdz, k23))));
-        const __m128 z = _mm_add_ps(plane, _mm_mul_ps(h, vinv_nz));
-        const __m128 below = _mm_cmplt_ps(z, vreach);
-        const __m128 zr = _mm_or_ps(_mm_and_ps(below, z), _mm_andnot_ps(below, vinf));
-        vzlo = _mm_min_ps(zr, vzlo);
-        float* const dst = zrow + j0 + k;
-        _mm_storeu_ps(dst, _mm_min_ps(zr, _mm_loadu_ps(dst)));
-        k01 = _mm_add_pd(k23, two);
-      }
-      alignas(16) float lanes[4];
-      _mm_store_ps(lanes, vzlo);
-      for (float l : lanes) zlo = std::min(zlo, l);
-    }
+    k = depth_samples_sse2(m, row, k, on_hi, zrow, j0, reach_, zlo);
 #endif
-    for (; k <= on_hi; ++k) {
-      double fi;
-      const float h = height(k, fi);
-      const float z = float(z_a + dz * k) + h * inv_nz;
-      const float zr = z < reach ? z : kInf;
-      zlo = std::min(zlo, zr);
-      zrow[j0 + k] = std::min(zrow[j0 + k], zr);
-    }
-    record_each(std::max(lo, on_hi + 1), hi);
+    depth_samples(m, row, k, on_hi, zrow, j0, reach_, zlo);
+    d_.zlo = zlo;
+    record_samples(m, row, i, j0, std::max(row.lo, on_hi + 1), row.hi, owner);
   }
-  zlo_ = zlo;
+}
+
+void Rasteriser::record_samples(const PatchMap& m, const PatchRow& row, int i, int j0, int k0, int k1, Owner owner) {
+  for (int k = k0; k <= k1; ++k) {
+    double fi;
+    const float h = row.height(m, k, fi);
+    if (h < SoleSurface::kOutside)
+      record(i, j0 + k, float(row.z_a + m.dz * k) + h * m.inv_nz, owner, float(fi) * m.inv_nu);
+  }
 }
 
 void Rasteriser::sphere(double cx, double cy, double cz, double r) {
@@ -278,16 +330,16 @@ void Rasteriser::sphere(double cx, double cy, double cz, double r) {
   // Only the disc where the lower surface is below the reach can be
   // recorded (its radius rr, plus a sample: the exact test is per sample).
   const double above = cz - double(reach_);
-  const double rr = (above > 0 ? std::sqrt(std::max(0.0, r2 - above * above)) : r) + ds_;
+  const double rr = (above > 0 ? std::sqrt(std::max(0.0, r2 - above * above)) : r) + d_.grid.ds;
   int i0, i1, j0, j1;
   row_range(cx - std::min(r, rr), cx + std::min(r, rr), i0, i1);
   col_range(cy - std::min(r, rr), cy + std::min(r, rr), j0, j1);
   if (i0 > i1 || j0 > j1) return;
   touch(i0, i1, j0, j1);
   for (int i = i0; i <= i1; ++i) {
-    const double dx = half_l_ - (i + 0.5) * ds_ - cx;
+    const double dx = d_.grid.half_l - (i + 0.5) * d_.grid.ds - cx;
     for (int j = j0; j <= j1; ++j) {
-      const double dy = half_w_ - (j + 0.5) * ds_ - cy;
+      const double dy = d_.grid.half_w - (j + 0.5) * d_.grid.ds - cy;
       const double d2 = dx * dx + dy * dy;
       if (d2 < r2) record(i, j, float(cz - std::sqrt(r2 - d2)), kOther, 0.0f);
     }
@@ -308,10 +360,11 @@ void Rasteriser::capsule(const Eigen::Vector3d& a, const Eigen::Vector3d& b, dou
 }
 
 void Rasteriser::rasterise(const Body& body, const PosedBody& posed, bool trace) {
+  clear();
   trace_ = trace;
-  if (trace_ && owner_.empty()) {
-    owner_.assign(zbuf_.size(), kNone);
-    ubuf_.assign(zbuf_.size(), 0.0f);
+  if (trace_ && d_.owner.empty()) {
+    d_.owner.assign(d_.z.size(), kNone);
+    d_.u.assign(d_.z.size(), 0.0f);
   }
   // Off the mat the frame reads 0 whatever the load: without a trace (which
   // reports the load off the mat too) there is nothing to rasterise.
@@ -324,200 +377,17 @@ void Rasteriser::rasterise(const Body& body, const PosedBody& posed, bool trace)
 }
 
 void Rasteriser::clear() {
-  for (int i = di0_; i <= di1_; ++i) {
-    if (span0_[i] <= span1_[i])
-      std::fill(&zbuf_[std::size_t(i) * ns_cols_ + span0_[i]], &zbuf_[std::size_t(i) * ns_cols_ + span1_[i]] + 1, kInf);
-    span0_[i] = ns_cols_, span1_[i] = -1;
+  const int cols = d_.grid.cols;
+  for (int i = d_.row0; i <= d_.row1; ++i) {
+    if (d_.span0[i] <= d_.span1[i])
+      std::fill(&d_.z[std::size_t(i) * cols + d_.span0[i]], &d_.z[std::size_t(i) * cols + d_.span1[i]] + 1, kInf);
+    d_.span0[i] = cols, d_.span1[i] = -1;
   }
-  di0_ = ns_rows_, di1_ = -1;
-  zlo_ = kInf;
-  off_.clear();
-  off_u_.clear();
-  off_owner_.clear();
-}
-
-RowSpan Rasteriser::distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target,
-                               float* frame, FrameTrace* trace) {
-  if (trace) *trace = FrameTrace{};
-  if (!(zlo_ < band_) || !(load_n > 0)) {  // airborne, or nothing to carry
-    clear();
-    return {};
-  }
-  const bool dirty = di1_ >= di0_;  // some sample on the mat was written
-  if (!dirty && !trace) {  // nothing on the mat: it reads 0
-    clear();
-    return {};
-  }
-  const int r0 = dirty ? di0_ / s_ : 0, r1 = dirty ? di1_ / s_ : -1;
-  const double pitch = mat_.pitch_m;
-  auto cell_x = [&](int r) { return half_l_ - (r + 0.5) * pitch; };
-  auto cell_y = [&](int c) { return half_w_ - (c + 0.5) * pitch; };
-  auto sample_x = [&](int i) { return half_l_ - (i + 0.5) * ds_; };
-  auto sample_y = [&](int j) { return half_w_ - (j + 0.5) * ds_; };
-
-  // 1. Sink level s: sum over samples of max(0, s - z) = F / (k dA), from a
-  //    histogram of the sample heights within max_sink of the lowest point
-  //    (exact at bin edges, linear within a bin).
-  constexpr int kBins = 64;
-  const float zlo = zlo_, w = max_sink_ / kBins, inv_w = 1.0f / w, ztop = zlo + max_sink_;
-  int count[kBins] = {};
-  double sum[kBins] = {};
-  auto bin = [&](float z) {
-    if (z < ztop) {
-      const int b = std::min(kBins - 1, int((z - zlo) * inv_w));
-      ++count[b];
-      sum[b] += z;
-    }
-  };
-  for (int i = di0_; i <= di1_; ++i) {  // each row's written columns
-    const float* z = &zbuf_[std::size_t(i) * ns_cols_];
-    int j = span0_[i];
-    const int j1 = span1_[i];
-#if defined(__SSE2__)
-    // Four samples at a time: most are empty (+inf); the others are binned
-    // in the same order as one by one.
-    const __m128 top = _mm_set1_ps(ztop);
-    for (; j + 3 <= j1; j += 4)
-      for (int m = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(z + j), top)); m; m &= m - 1)
-        bin(z[j + __builtin_ctz(unsigned(m))]);
-#endif
-    for (; j <= j1; ++j) bin(z[j]);
-  }
-  for (const OffSample& o : off_) bin(o.z);
-  const double sample_area = ds_ * ds_;
-  const double target_sum = load_n / (stiffness_pa_per_m * sample_area);  // sum of (s - z), m
-  double level = ztop, n = 0, s = 0;
-  for (int b = 0; b < kBins; ++b) {
-    n += count[b];
-    s += sum[b];
-    const double edge = zlo + (b + 1) * double(w);
-    if (n > 0 && n * edge - s >= target_sum) {
-      level = std::clamp((target_sum + s) / n, zlo + b * double(w), edge);
-      break;
-    }
-  }
-  const float lv = float(level);
-
-  // 2. Mean penetration per cell (m), and its moments for the tilt.
-  const float inv_s2 = 1.0f / float(s_ * s_);
-  double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
-  auto moment = [&](double p, double x, double y) {
-    m0 += p, mx += p * x, my += p * y, mxx += p * x * x, mxy += p * x * y, myy += p * y * y;
-  };
-  for (const OffSample& o : off_)
-    if (o.z < lv) moment((lv - o.z) * inv_s2, sample_x(o.i), sample_y(o.j));
-  // hit[j]: some sample of column j of the cell row is below the level (the
-  // members in locals: the byte stores could alias them, and the loops then
-  // do not vectorise).
-  // Cells cell0[r] .. cell1[r] of row r hold every written sample of it;
-  // the others stay 0.
-  unsigned char* __restrict hit = hit_.data();
-  int* const cell0 = cell0_.data();
-  int* const cell1 = cell1_.data();
-  const int S = s_;
-  const std::size_t stride = std::size_t(ns_cols_);
-  for (int r = r0; r <= r1; ++r) {
-    int js = ns_cols_, je1 = -1;
-    for (int a = 0; a < S; ++a) js = std::min(js, span0_[r * S + a]), je1 = std::max(je1, span1_[r * S + a]);
-    cell0[r] = js / S, cell1[r] = je1 < 0 ? -1 : je1 / S;
-    if (cell0[r] > cell1[r]) continue;
-    const int jb = cell0[r] * S, je = (cell1[r] + 1) * S;
-    const float* __restrict z0 = &zbuf_[std::size_t(r * S) * stride];
-    for (int j = jb; j < je; ++j) hit[j] = z0[j] < lv;
-    for (int a = 1; a < S; ++a) {
-      const float* __restrict za = z0 + std::size_t(a) * stride;
-      for (int j = jb; j < je; ++j) hit[j] |= za[j] < lv;
-    }
-    for (int c = cell0[r]; c <= cell1[r]; ++c) {
-      unsigned char any = 0;
-      for (int b = 0; b < S; ++b) any |= hit[c * S + b];
-      if (!any) continue;  // no penetration: the cell stays 0
-      float acc = 0;
-      for (int a = 0; a < s_; ++a) {
-        const float* z = &zbuf_[std::size_t(r * s_ + a) * ns_cols_ + c * s_];
-        // max(lv - z, 0): lv - z where z < lv, else +0 (+inf: -inf -> 0),
-        // which leaves acc as it is; without a branch.
-        for (int b = 0; b < s_; ++b) acc += std::max(lv - z[b], 0.0f);
-      }
-      acc *= inv_s2;
-      frame[r * mat_.cols + c] = acc;
-      if (acc > 0) moment(acc, cell_x(r), cell_y(c));
-    }
-  }
-  if (!(m0 > 0)) {
-    for (int r = r0; r <= r1; ++r)
-      if (cell0[r] <= cell1[r]) std::fill(frame + r * mat_.cols + cell0[r], frame + r * mat_.cols + cell1[r] + 1, 0.0f);
-    clear();
-    return {};
-  }
-
-  // 3. Tilt towards the target: weights 1 + g . (r - c) move the centre of
-  //    pressure by C g (C the penetration-weighted covariance of the contact).
-  const Eigen::Vector2d centroid(mx / m0, my / m0);
-  Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
-  if (target) {
-    Eigen::Matrix2d cov;
-    cov << mxx / m0 - centroid.x() * centroid.x(), mxy / m0 - centroid.x() * centroid.y(),
-        mxy / m0 - centroid.x() * centroid.y(), myy / m0 - centroid.y() * centroid.y();
-    cov += Eigen::Matrix2d::Identity() * (pitch * pitch / 12);  // a cell's own extent
-    const Eigen::Matrix2d inv = cov.inverse();
-    Eigen::Vector2d shift = *target - centroid;
-    const double maha = std::sqrt(std::max(0.0, shift.dot(inv * shift)));
-    constexpr double kMaxShift = 0.6;  // standard deviations: every contact cell keeps some load
-    if (maha > kMaxShift) shift *= kMaxShift / maha;
-    tilt = inv * shift;
-  }
-  auto weight = [&](double x, double y) {
-    return std::max(0.0, 1.0 + tilt.x() * (x - centroid.x()) + tilt.y() * (y - centroid.y()));
-  };
-  double total = 0;  // sum of weighted cell penetrations, on and off the mat (m)
-  for (const OffSample& o : off_)
-    if (o.z < lv) total += (lv - o.z) * inv_s2 * weight(sample_x(o.i), sample_y(o.j));
-  for (int r = r0; r <= r1; ++r)
-    for (int c = cell0[r]; c <= cell1[r]; ++c) {
-      float& p = frame[r * mat_.cols + c];
-      if (p > 0) {
-        p = float(p * weight(cell_x(r), cell_y(c)));
-        total += p;
-      }
-    }
-  const double scale = total > 0 ? load_n / (total * mat_.cell_area_m2()) / 1000.0 : 0.0;  // kPa per m
-  for (int r = r0; r <= r1; ++r)
-    for (int c = cell0[r]; c <= cell1[r]; ++c) frame[r * mat_.cols + c] = float(frame[r * mat_.cols + c] * scale);
-
-  // 4. Who carries what (trace): per sample force = weighted penetration x
-  //    scale x sample area (the weight of its cell, as on the map).
-  if (trace && total > 0) {
-    trace->load_n = load_n;
-    trace->sink_m = level - zlo;
-    const double per_m = scale * 1000.0 * sample_area;  // N per m of sample penetration
-    double cop[2] = {0, 0};
-    auto add = [&](unsigned char owner, float z, float u, double wgt) {
-      if (!(z < lv) || !(wgt > 0)) return;
-      const double f = (lv - z) * per_m * wgt;
-      if (owner == kLeftSole || owner == kRightSole) {
-        FootLoad& fl = trace->foot[owner - 1];
-        fl.force_n += f;
-        fl.area_m2 += sample_area;
-        cop[owner - 1] += f * u;
-        if (u < 0.3f) fl.heel_n += f;
-        if (u >= 0.6f) fl.forefoot_n += f;
-      } else {
-        trace->other_n += f;
-      }
-    };
-    for (int i = di0_; i <= di1_; ++i)
-      for (int j = span0_[i]; j <= span1_[i]; ++j) {
-        const std::size_t k = std::size_t(i) * ns_cols_ + j;
-        add(owner_[k], zbuf_[k], ubuf_[k], weight(cell_x(i / s_), cell_y(j / s_)));
-      }
-    for (std::size_t k = 0; k < off_.size(); ++k)
-      add(off_owner_[k], off_[k].z, off_u_[k], weight(sample_x(off_[k].i), sample_y(off_[k].j)));
-    for (int f = 0; f < 2; ++f)
-      if (trace->foot[f].force_n > 0) trace->foot[f].cop_u = cop[f] / trace->foot[f].force_n;
-  }
-  clear();
-  return {r0, r1};
+  d_.row0 = d_.grid.rows, d_.row1 = -1;
+  d_.zlo = kInf;
+  d_.off.clear();
+  d_.off_u.clear();
+  d_.off_owner.clear();
 }
 
 }  // namespace ptnet::detail

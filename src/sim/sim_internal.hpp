@@ -1,9 +1,13 @@
-// Internal pieces of the simulator (see ptnet/sim.hpp).
+// Internal pieces of the simulator (see ptnet/sim.hpp): foot pitch and
+// floor (placement.cpp), the load (load.cpp), the depth from below
+// (rasterise.cpp), the elastic foundation (foundation.cpp), the sensor
+// (sensor.cpp).
 //
 // Dimension legend: T frames, R x C mat cells, S x S samples per cell.
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -48,36 +52,82 @@ struct RowSpan {
   int first = 0, last = -1;
 };
 
-// Depth-from-below rasteriser over the S x S sample grid of the mat, and the
-// elastic-foundation load distribution. Reused across frames: no allocation
-// after the first frames.
+// ---------------------------------------------------- depth from below
+// rasterise.cpp: the lowest body surface over S x S samples per mat cell.
+
+// The S x S sample grid over the mat: sample (i, j) has its centre at
+// X = L/2 - (i + 0.5) ds, Y = W/2 - (j + 0.5) ds (mat coordinates, m; L x W
+// the mat, ds = pitch / S); samples with i, j outside [0, R S) x [0, C S)
+// lie off the mat.
+struct SampleGrid {
+  SampleGrid(const MatSpec& mat, int subsamples);
+  MatSpec mat;
+  int s;                     // S
+  double ds, half_l, half_w;  // sample pitch, L/2, W/2 (m)
+  int rows, cols;            // R S, C S
+  double sample_x(int i) const { return half_l - (i + 0.5) * ds; }
+  double sample_y(int j) const { return half_w - (j + 0.5) * ds; }
+  double cell_x(int r) const { return half_l - (r + 0.5) * mat.pitch_m; }
+  double cell_y(int c) const { return half_w - (c + 0.5) * mat.pitch_m; }
+  bool on_mat(int i, int j) const { return i >= 0 && i < rows && j >= 0 && j < cols; }
+};
+
+// Which surface a sample's height belongs to (with a trace).
+enum Owner : unsigned char { kNone = 0, kLeftSole = 1, kRightSole = 2, kOther = 3 };
+
+// A sample off the mat: each surface's record there is a sample of its own.
+struct OffSample {
+  float z;   // height (m)
+  int i, j;  // sample indices, outside [0, R S) x [0, C S)
+};
+
+// One frame's depth from below, the foundation's input: the lowest surface
+// height per sample on the mat, and every record off it.
+struct DepthMap {
+  explicit DepthMap(const SampleGrid& grid);
+  // Whether some sample on the mat was written.
+  bool written() const { return row1 >= row0; }
+
+  SampleGrid grid;
+  std::vector<float> z;           // [R S, C S] lowest surface height (m), +inf: none
+  int row0, row1;                 // the sample rows written (row0 > row1: none)
+  std::vector<int> span0, span1;  // [R S] the columns [span0, span1] written in each sample row
+  float zlo;                      // lowest recorded height, on or off the mat (m; +inf: none)
+  std::vector<OffSample> off;     // the records off the mat
+  // With a trace (Rasteriser::rasterise(..., true)): the surface of each
+  // sample (Owner) and its sole coordinate u (0 heel .. 1 toe tip).
+  std::vector<unsigned char> owner;  // [R S, C S]
+  std::vector<float> u;              // [R S, C S]
+  std::vector<unsigned char> off_owner;  // [off]
+  std::vector<float> off_u;              // [off]
+};
+
+// A sole patch's maps from a sample to its table cell and height, and one
+// row of them (rasterise.cpp).
+struct PatchMap;
+struct PatchRow;
+
+// Depth-from-below rasteriser over the sample grid of the mat. Reused across
+// frames: no allocation after the first frames.
 class Rasteriser {
  public:
-  Rasteriser(const MatSpec& mat, int subsamples, double compliance_m, double max_sink_m);
+  // Surfaces at or above reach_m (the compliance band plus the maximum sink)
+  // can never touch: they are not recorded.
+  Rasteriser(const MatSpec& mat, int subsamples, double reach_m);
 
-  // Rasterises one posed body (mat coordinates): the lowest surface height
-  // per sample, on and off the mat. With `trace`, also which surface (left
-  // sole, right sole, other) and where along the sole each sample lies.
+  // Rasterises one posed body (mat coordinates) into depth(), replacing the
+  // previous frame's: the lowest surface height per sample, on and off the
+  // mat. With `trace`, also which surface (left sole, right sole, other) and
+  // where along the sole each sample lies. Without it, a body that cannot
+  // reach the mat leaves the map empty (its frame reads 0 whatever the load).
   void rasterise(const Body& body, const PosedBody& posed, bool trace);
-
-  // Sinks the body into the foundation until it carries load_n (stiffness in
-  // Pa per m of penetration) and writes each cell's pressure (kPa) into
-  // frame[R * C], which must be all zero on entry (only the cells under the
-  // contact are written); all zero when no surface is within the compliance band.
-  // The pressures times the cell area sum to load_n over all contact, on and
-  // off the mat. Clears the rasterised state. Fills *trace if given (needs
-  // rasterise(..., true)).
-  // With `target` (mat coordinates X, Y; m), the foundation tilts so that the
-  // centre of pressure moves towards it (the penetration of each cell is
-  // weighted by max(0, 1 + g . (r - c)), c the penetration centroid), at most
-  // 0.6 standard deviations of the contact away from c (so that no contact
-  // cell of a compact footprint is unloaded). Returns the rows it wrote.
-  RowSpan distribute(double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target, float* frame,
-                     FrameTrace* trace);
+  const DepthMap& depth() const { return d_; }
 
  private:
-  enum Owner : unsigned char { kNone = 0, kLeftSole = 1, kRightSole = 2, kOther = 3 };
   void patch(const SoleSurface& sole, const SolePatch& p, Owner owner);
+  // Samples [k0, k1] of sample row i, at j0 + k, of the patch row `row`,
+  // one by one through record().
+  void record_samples(const PatchMap& m, const PatchRow& row, int i, int j0, int k0, int k1, Owner owner);
   // The samples [i0, i1] x [j0, j1] patch() may visit (any, on or off the
   // mat); false when it visits none.
   bool patch_box(const SoleSurface& sole, const SolePatch& p, int& i0, int& i1, int& j0, int& j1) const;
@@ -95,41 +145,96 @@ class Rasteriser {
   // surface `owner` at sole coordinate u.
   void record(int i, int j, float z, Owner owner, float u) {
     if (!(z < reach_)) return;
-    if (z < zlo_) zlo_ = z;
-    if (i >= 0 && i < ns_rows_ && j >= 0 && j < ns_cols_) {
-      const std::size_t k = std::size_t(i) * ns_cols_ + j;
-      if (z < zbuf_[k]) {
-        zbuf_[k] = z;
-        if (trace_) owner_[k] = owner, ubuf_[k] = u;
+    if (z < d_.zlo) d_.zlo = z;
+    if (d_.grid.on_mat(i, j)) {
+      const std::size_t k = std::size_t(i) * d_.grid.cols + j;
+      if (z < d_.z[k]) {
+        d_.z[k] = z;
+        if (trace_) d_.owner[k] = owner, d_.u[k] = u;
       }
     } else {
-      off_.push_back({z, i, j});
-      if (trace_) off_owner_.push_back(owner), off_u_.push_back(u);
+      d_.off.push_back({z, i, j});
+      if (trace_) d_.off_owner.push_back(owner), d_.off_u.push_back(u);
     }
   }
+  // Empties the map (only the rows and columns written).
   void clear();
 
-  MatSpec mat_;
-  int s_;
-  float band_, max_sink_, reach_;  // reach_: surfaces above this can never touch
-  double ds_, half_l_, half_w_;
-  int ns_rows_, ns_cols_;
-  std::vector<float> zbuf_;  // [R S, C S] lowest surface height (m), +inf: none
-  std::vector<unsigned char> hit_;  // [C S] distribute's scratch
-  int di0_, di1_;                   // the sample rows written this frame (di0_ > di1_: none)
-  std::vector<int> span0_, span1_;  // [R S] the columns [span0, span1] written in each sample row
-  std::vector<int> cell0_, cell1_;  // [R] distribute's scratch: the cells of each row it may write
-  float zlo_;                  // lowest recorded height this frame
+  float reach_;
   bool trace_ = false;
-  std::vector<unsigned char> owner_;  // [R S, C S] with trace
-  std::vector<float> ubuf_;           // [R S, C S] sole u with trace
-  struct OffSample {
-    float z;
-    int i, j;  // sample indices, outside [0, R S) x [0, C S)
+  DepthMap d_;
+};
+
+// ---------------------------------------------------- elastic foundation
+// foundation.cpp: the body sunk into the mat until it carries its load.
+
+// The elastic foundation (sole tissue and mat foam, linear stiffness) under
+// a frame's depth map; reused across frames (its scratch is the grid's
+// size). distribute() runs its steps in order:
+//  1. sink_level: the level s where sum over samples of k max(0, s - z) dA
+//     = F, at most max_sink above the lowest surface point;
+//  2. penetrate: each cell's mean penetration max(0, s - z) over its
+//     samples, and the moments of the contact (a sample off the mat is a
+//     cell of its own);
+//  3. tilt_towards: the weights 1 + g . (r - c) that move the centre of
+//     pressure towards the target (the zero-moment point), at most 0.6
+//     standard deviations of the contact from its centroid c;
+//  4. scale_to_load: weighted penetrations scaled so that the pressures x
+//     cell area sum to F over all contact, on and off the mat;
+//  5. trace_feet: who carries what (per sole, heel, forefoot, centre of
+//     pressure along the sole, area; other body parts).
+class Foundation {
+ public:
+  Foundation(const SampleGrid& grid, double compliance_m, double max_sink_m);
+
+  // Sinks the body of `depth` into the foundation until it carries load_n
+  // (stiffness in Pa per m of penetration) and writes each cell's pressure
+  // (kPa) into frame[R * C], which must be all zero on entry (only the cells
+  // under the contact are written); all zero when no surface is within the
+  // compliance band. The pressures times the cell area sum to load_n over
+  // all contact, on and off the mat. Fills *trace if given (needs a depth
+  // map rasterised with a trace).
+  // With `target` (mat coordinates X, Y; m), the foundation tilts so that the
+  // centre of pressure moves towards it (the penetration of each cell is
+  // weighted by max(0, 1 + g . (r - c)), c the penetration centroid), at most
+  // 0.6 standard deviations of the contact away from c (so that no contact
+  // cell of a compact footprint is unloaded). Returns the rows it wrote.
+  RowSpan distribute(const DepthMap& depth, double load_n, double stiffness_pa_per_m, const Eigen::Vector2d* target,
+                     float* frame, FrameTrace* trace);
+
+ private:
+  // The penetration-weighted moments of the contact (cells on the mat at
+  // their centres, samples off it at theirs; m, m^2, m^3).
+  struct Moments {
+    double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
+    void add(double p, double x, double y) {
+      m0 += p, mx += p * x, my += p * y, mxx += p * x * x, mxy += p * x * y, myy += p * y * y;
+    }
   };
-  std::vector<OffSample> off_;        // samples off the mat
-  std::vector<float> off_u_;
-  std::vector<unsigned char> off_owner_;
+  // The tilt's weight of a point: max(0, 1 + g . (r - c)).
+  struct Tilt {
+    Eigen::Vector2d centroid, g;
+    double weight(double x, double y) const {
+      return std::max(0.0, 1.0 + g.x() * (x - centroid.x()) + g.y() * (y - centroid.y()));
+    }
+  };
+  // Step 4's result: the sum of weighted penetrations (m) and kPa per m.
+  struct Load {
+    double total = 0, scale = 0;
+  };
+
+  double sink_level(const DepthMap& d, double load_n, double stiffness_pa_per_m) const;
+  Moments penetrate(const DepthMap& d, float lv, RowSpan rows, float* frame);
+  void penetrate_row(const DepthMap& d, float lv, int r, float* frame, Moments& m);
+  Tilt tilt_towards(const Moments& m, const Eigen::Vector2d* target) const;
+  Load scale_to_load(const DepthMap& d, float lv, const Tilt& tilt, RowSpan rows, double load_n, float* frame) const;
+  void trace_feet(const DepthMap& d, double level, const Tilt& tilt, const Load& load, double load_n,
+                  FrameTrace& trace) const;
+
+  SampleGrid grid_;
+  float band_, max_sink_;
+  std::vector<unsigned char> hit_;  // [C S] penetrate's scratch
+  std::vector<int> cell0_, cell1_;  // [R] the cells of each row penetrate may write (cell0 > cell1: none)
 };
 
 // Applies the sensor model to one frame in place: [R * C] kPa. `scratch` has

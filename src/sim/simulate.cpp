@@ -75,13 +75,14 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
   const Motion motion = detail::pitch_corrected(input, place.foot_pitch);
   const int T = motion.size();
   const MatSpec& mat = options.mat;
-  std::vector<PressureSequence> reads;  // all zero (Rasteriser::distribute writes only the contact)
+  std::vector<PressureSequence> reads;  // all zero (Foundation::distribute writes only the contact)
   for (std::size_t k = 0; k < seeds.size(); ++k) reads.emplace_back(mat, T, motion.fps);
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
   const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
   const std::vector<double> floor = place.floor.empty() ? std::vector<double>(std::size_t(T), 0.0) : place.floor;
-  detail::Rasteriser raster(mat, options.subsamples, options.compliance_m, options.max_sink_m);
+  detail::Rasteriser raster(mat, options.subsamples, options.compliance_m + options.max_sink_m);
+  detail::Foundation foundation(raster.depth().grid, options.compliance_m, options.max_sink_m);
   std::vector<float> scratch(mat.cells());
   std::vector<std::uint64_t> rng;
   for (std::uint64_t seed : seeds) rng.push_back(seed ^ 0x5bd1e9955bd1e995ULL);
@@ -100,8 +101,9 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
     const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
     const Eigen::Vector2d zmp(place.axis.dot(d), place.left.dot(d));
     const detail::RowSpan pressed =
-        raster.distribute(com.load_n[std::size_t(t)], stiffness, options.balance_moments ? &zmp : nullptr, frame,
-                          trace ? &(*trace)[std::size_t(t)] : nullptr);
+        foundation.distribute(raster.depth(), com.load_n[std::size_t(t)], stiffness,
+                              options.balance_moments ? &zmp : nullptr, frame,
+                              trace ? &(*trace)[std::size_t(t)] : nullptr);
     // The other readings' frames are all zero outside the pressed rows too.
     const std::size_t first = std::size_t(std::max(0, pressed.first)) * std::size_t(mat.cols);
     const std::size_t end = std::size_t(std::min(mat.rows, pressed.last + 1)) * std::size_t(mat.cols);

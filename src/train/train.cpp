@@ -1,10 +1,11 @@
 // train(): the run and its phases, in order: plan the model, index the
-// windows, build the network, start or resume, then the epochs (Adam with a
-// step learning-rate schedule, early stopping, a checkpoint per epoch) and
-// the final metrics of the best weights. The pieces it runs: the options
-// (train_options.cpp), the batches (batcher.cpp), the loss and validation
-// (loss_validation.cpp), checkpoint.pt (checkpoint.cpp), the model folder
-// (model_folder.cpp) and the ranks (distributed.cpp).
+// windows, build the network, start or resume, then the epochs (epochs.cpp:
+// Adam with a step learning-rate schedule, early stopping, a checkpoint per
+// epoch) and the final metrics of the best weights. What the phases share:
+// run.hpp. The pieces they run: the options (train_options.cpp), the
+// batches (batcher.cpp), the loss and validation (loss_validation.cpp),
+// checkpoint.pt (checkpoint.cpp), the model folder (model_folder.cpp) and
+// the ranks (distributed.cpp).
 //
 // Dimension legend: N windows in a batch, T window frames, H x W mat cells,
 // A = 3 attributes.
@@ -13,83 +14,23 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <random>
 
-#include "batcher.hpp"
-#include "checkpoint.hpp"
-#include "distributed.hpp"
 #include "loss_validation.hpp"
 #include "model_folder.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/io.hpp"
-#include "ptnet/model.hpp"
-#include "ptnet/train.hpp"
+#include "run.hpp"
 #include "train_options.hpp"
-#include "window_index.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-std::string fmt(const char* f, double v) {
+std::string format_number(const char* f, double v) {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
 }
 
-// Training windows of one epoch: all (shuffled) or `samples_per_epoch` drawn
-// uniformly, from a generator seeded by (seed, epoch) so resume matches.
-std::vector<std::int64_t> epoch_order(const TrainOptions& o, const WindowIndex& index, int epoch0) {
-  std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(epoch0) + 1);
-  const std::int64_t total = index.train_size();
-  std::vector<std::int64_t> order;
-  if (o.samples_per_epoch > 0 && o.samples_per_epoch < total) {
-    std::uniform_int_distribution<std::int64_t> pick(0, total - 1);
-    for (std::int64_t i = 0; i < o.samples_per_epoch; ++i) order.push_back(pick(rng));
-  } else {
-    order.resize(std::size_t(total));
-    for (std::int64_t i = 0; i < total; ++i) order[std::size_t(i)] = i;
-    for (std::int64_t i = total - 1; i > 0; --i) {
-      std::uniform_int_distribution<std::int64_t> pick(0, i);
-      std::swap(order[std::size_t(i)], order[std::size_t(pick(rng))]);
-    }
-  }
-  return order;
-}
-
-// ---- the phases of train(), in order
-
-// What the phases share: the model folder's files and what goes into config.json.
-struct Run {
-  const PressureSource& source;
-  TrainOptions o;  // a copy: plan_model settles contact_weight
-  fs::path dir;
-  std::string config_path, ckpt_path, best_path;
-  torch::Device device;
-  ModelDir md;        // written to config.json
-  ModelDir previous;  // --resume: the folder's config; --init: the other model's
-  std::string digest;
-  Communicator& comm;  // the ranks (a world of one when not distributed)
-  // Distributed: the best weights so far, kept by the ranks that do not
-  // write the folder (they may not see rank 0's model.pt).
-  std::vector<torch::Tensor> best_snapshot;
-
-  Run(const PressureSource& src, const std::string& out_dir, const TrainOptions& options, Communicator& c)
-      : source(src), o(options), dir(out_dir), config_path(ModelFiles(out_dir).config()),
-        ckpt_path(ModelFiles(out_dir).checkpoint()), best_path(ModelFiles(out_dir).weights()),
-        device(parse_device(options.device)), comm(c) {}
-  bool writes() const { return comm.rank() == 0; }  // rank 0 alone writes the model folder
-  void log(const std::string& line) const {
-    if (o.progress) o.progress(progress_line("train", line));
-  }
-  void write_config() {
-    if (writes()) write_text_file(config_path, to_json(md).dump(2) + "\n", /*force=*/true);
-  }
-};
-
-// Parameters and buffers, in a fixed order (the best-weights snapshot).
 std::vector<torch::Tensor> weight_tensors(const PressureTransferNet& net) {
   std::vector<torch::Tensor> out;
   for (const auto& p : net->parameters()) out.push_back(p);
@@ -97,9 +38,13 @@ std::vector<torch::Tensor> weight_tensors(const PressureTransferNet& net) {
   return out;
 }
 
+namespace {
+
+// ---- the phases of train(), in order (the epochs: epochs.cpp)
+
 // The architecture from the options, the resumed folder or the --init model,
 // checked against the data's mat and frame rate and the available memory.
-void plan_model(Run& run) {
+void plan_model(TrainRun& run) {
   const PressureSource& source = run.source;
   TrainOptions& o = run.o;
   const MatSpec mat = source.mat();
@@ -143,7 +88,7 @@ void plan_model(Run& run) {
 
 // The lazy window index and the normalisation (fitted, or the previous
 // model's), recorded in config.json's data and options.
-WindowIndex index_windows(Run& run) {
+WindowIndex index_windows(TrainRun& run) {
   const TrainOptions& o = run.o;
   WindowOptions wo;
   wo.window = run.md.model.window;
@@ -164,7 +109,7 @@ WindowIndex index_windows(Run& run) {
 }
 
 // The network, seeded, with the --init model's weights when fine-tuning.
-PressureTransferNet build_network(const Run& run) {
+PressureTransferNet build_network(const TrainRun& run) {
   const TrainOptions& o = run.o;
   torch::manual_seed(o.seed);
   PressureTransferNet net(run.md.model);
@@ -180,7 +125,7 @@ PressureTransferNet build_network(const Run& run) {
 
 // --resume: the checkpoint's state (its weights checked against config.json);
 // a fresh run: the initial weights as the epoch-0 checkpoint.
-TrainState start_or_resume(Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer) {
+TrainState start_or_resume(TrainRun& run, PressureTransferNet& net, torch::optim::Adam& optimizer) {
   TrainState s;
   if (run.o.resume) {
     s = load_checkpoint(run.ckpt_path, net, optimizer);
@@ -197,13 +142,13 @@ TrainState start_or_resume(Run& run, PressureTransferNet& net, torch::optim::Ada
   return s;
 }
 
-void log_setup(const Run& run, const WindowIndex& index, const PressureTransferNet& net, const TrainState& s) {
+void log_setup(const TrainRun& run, const WindowIndex& index, const PressureTransferNet& net, const TrainState& s) {
   const ModelConfig& m = run.md.model;
   run.log("train: " + std::to_string(index.pairs().size()) + " pairs, " + std::to_string(index.train_size()) +
           " training / " + std::to_string(index.val_size()) + " validation windows, " +
           std::to_string(parameter_count(*net)) + " parameters (" + arch_name(m.arch) + " " +
           std::to_string(m.channels[0]) + "/" + std::to_string(m.channels[1]) + "/" +
-          std::to_string(m.channels[2]) + "), pressure scale " + fmt("%.3g", run.md.norm.pressure_scale_kpa) +
+          std::to_string(m.channels[2]) + "), pressure scale " + format_number("%.3g", run.md.norm.pressure_scale_kpa) +
           " kPa, " + std::to_string(torch::get_num_threads()) + " threads" +
           (run.comm.distributed() ? ", " + std::to_string(run.comm.size()) + " ranks" : "") +
           (run.o.resume ? ", resuming after epoch " + std::to_string(s.epoch) : ""));
@@ -214,137 +159,9 @@ void log_setup(const Run& run, const WindowIndex& index, const PressureTransferN
             " ranks: some ranks idle (set micro_batch to at most batch / ranks)");
 }
 
-// One epoch of optimiser steps (epoch0 0-based); the mean training loss.
-// Distributed: each rank runs the micro-batches m with m % ranks == rank;
-// the gradients (each micro-batch's loss already weighted by its share of
-// the whole batch), the BatchNorm statistics and the loss are summed over
-// the ranks before the step.
-double train_epoch(const Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer, Batcher& batcher,
-                   const WindowIndex& index, int epoch0, const TrainState& s) {
-  const TrainOptions& o = run.o;
-  Communicator& comm = run.comm;
-  SharedBatchNorm shared_bn(*net);
-  const std::vector<torch::Tensor> params = net->parameters();
-  net->train();
-  const auto order = epoch_order(o, index, epoch0);
-  double loss_sum = 0;
-  std::int64_t seen = 0;
-  std::vector<WindowRef> refs;
-  for (std::size_t i = 0; i < order.size(); i += std::size_t(o.batch)) {
-    refs.clear();
-    for (std::size_t j = i; j < std::min(order.size(), i + std::size_t(o.batch)); ++j)
-      refs.push_back(index.train(order[j]));
-    // One optimiser step per batch; gradients accumulate over micro-batches,
-    // each loss weighted by its share of the batch (= the batch mean).
-    optimizer.zero_grad();
-    double l = 0;
-    const std::size_t micro = std::size_t(std::max(1, o.micro_batch));
-    const int micro_batches = int((refs.size() + micro - 1) / micro);
-    if (comm.distributed()) shared_bn.begin_step();
-    for (std::size_t m = 0; m < refs.size(); m += micro) {
-      const int k = int(m / micro);
-      if (k % comm.size() != comm.rank()) continue;
-      const std::vector<WindowRef> part(refs.begin() + std::ptrdiff_t(m),
-                                        refs.begin() + std::ptrdiff_t(std::min(refs.size(), m + micro)));
-      if (comm.distributed()) shared_bn.before_micro_batch();
-      Batch b = batcher.load(part);
-      if (o.crop_rows > 0 && run.md.model.arch == Arch::frame) crop_to_pressure(b, o.crop_rows);
-      if (o.mirror) mirror_every_second(b);
-      auto loss = training_loss(o, net->forward_parts(b.x, b.sa, b.ta), b.y) *
-                  (double(part.size()) / double(refs.size()));
-      const double part_loss = loss.item<double>();
-      if (!std::isfinite(part_loss))
-        throw Error("training diverged: loss is " +
-                    std::string(std::isnan(part_loss) ? "NaN" : "infinite") + " at epoch " +
-                    std::to_string(epoch0 + 1) + ", batch " + std::to_string(i / o.batch + 1) +
-                    " (try a lower " + field_text("lr") + "); the last good checkpoint (epoch " +
-                    std::to_string(s.epoch) + ") is kept in " + run.ckpt_path);
-      loss.backward();
-      l += part_loss;
-      if (comm.distributed()) shared_bn.after_micro_batch(k, micro_batches);
-    }
-    if (comm.distributed()) {
-      std::vector<torch::Tensor> summed;
-      for (const auto& p : params) {
-        if (!p.grad().defined()) p.mutable_grad() = torch::zeros_like(p);
-        summed.push_back(p.grad());
-      }
-      for (const auto& t : shared_bn.sums()) summed.push_back(t);
-      summed.push_back(torch::tensor(float(l)));
-      comm.allreduce(summed, "the gradient all-reduce (epoch " + std::to_string(epoch0 + 1) + ")");
-      shared_bn.end_step(micro_batches);
-      l = double(summed.back().item<float>());
-    }
-    optimizer.step();
-    loss_sum += l * double(refs.size());
-    seen += std::int64_t(refs.size());
-    if (o.progress) {
-      Progress p = progress_count("train", seen, std::int64_t(order.size()), "windows");
-      p.step = epoch0 + 1;
-      p.steps = o.epochs;
-      o.progress(p);
-    }
-  }
-  return loss_sum / double(seen);
-}
-
-// After an epoch: the best weights when validation improved, the history,
-// the checkpoint and config.json; the epoch's log line.
-void record_epoch(Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer, TrainState& s, int epoch0,
-                  double train_loss, double val_loss, double lr, double secs) {
-  s.epoch = epoch0 + 1;
-  if (epoch0 == 0) s.first_val = val_loss;
-  if (val_loss < s.best_val) {
-    s.best_val = val_loss;
-    s.best_epoch = epoch0 + 1;
-    s.bad_epochs = 0;
-    if (run.writes()) {
-      save_weights(net, run.best_path);
-      record_digest(run.md, ModelFiles::kWeights, weights_digest(*net));
-      run.write_config();
-    } else {
-      run.best_snapshot.clear();
-      for (const auto& t : weight_tensors(net)) run.best_snapshot.push_back(t.detach().clone());
-    }
-  } else {
-    ++s.bad_epochs;
-  }
-  s.history += std::to_string(epoch0 + 1) + "," + fmt("%.6g", train_loss) + "," + fmt("%.6g", val_loss) + "," +
-               fmt("%.6g", lr) + "," + fmt("%.3f", secs) + "\n";
-  if (run.writes()) {
-    save_checkpoint(run.ckpt_path, net, optimizer, s);
-    record_digest(run.md, ModelFiles::kCheckpoint, weights_digest(*net), s.epoch);
-    run.write_config();
-    write_text_file(ModelFiles(run.dir.string()).history(), s.history, /*force=*/true);
-  }
-  char line[160];
-  std::snprintf(line, sizeof line, "[epoch %d/%d] train %.6f val %.6f lr %.1e %.1f s", epoch0 + 1, run.o.epochs,
-                train_loss, val_loss, lr, secs);
-  run.log(line);
-}
-
-// The epochs, until the last one or early stopping.
-void run_epochs(Run& run, PressureTransferNet& net, torch::optim::Adam& optimizer, Batcher& batcher,
-                const WindowIndex& index, TrainState& s) {
-  const TrainOptions& o = run.o;
-  const bool finished_before = s.epoch >= o.epochs || s.bad_epochs >= o.patience;
-  for (int e = s.epoch; e < o.epochs && s.bad_epochs < o.patience && !finished_before; ++e) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const double lr = lr_at(o, e);
-    for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
-    const double train_loss = train_epoch(run, net, optimizer, batcher, index, e, s);
-    const ValidationResult v = validate_model(net, batcher, index, o, run.md.norm.pressure_scale_kpa, false, run.comm);
-    if (!std::isfinite(v.mse))
-      throw Error("training diverged: validation loss is not finite at epoch " + std::to_string(e + 1) +
-                  "; the last good checkpoint (epoch " + std::to_string(s.epoch) + ") is kept in " + run.ckpt_path);
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    record_epoch(run, net, optimizer, s, e, train_loss, v.mse, lr, secs);
-  }
-}
-
 // The best weights on the validation windows: RMSE beside the baselines,
 // binary R^2, the fitted contact threshold; into config.json and the result.
-TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, const WindowIndex& index,
+TrainResult final_metrics(TrainRun& run, PressureTransferNet& net, Batcher& batcher, const WindowIndex& index,
                           const TrainState& s, std::chrono::steady_clock::time_point t_start) {
   const TrainOptions& o = run.o;
   ModelDir& md = run.md;
@@ -361,7 +178,7 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
   if (o.mirror) {  // mirror averaging at inference, kept if it helps on validation
     const ValidationResult m = validate_model(net, batcher, index, o, md.norm.pressure_scale_kpa, true, run.comm, true);
     md.model.mirror = m.rmse_kpa < v.rmse_kpa;
-    run.log("train: mirror averaging: val RMSE " + fmt("%.4f", v.rmse_kpa) + " -> " + fmt("%.4f", m.rmse_kpa) +
+    run.log("train: mirror averaging: val RMSE " + format_number("%.4f", v.rmse_kpa) + " -> " + format_number("%.4f", m.rmse_kpa) +
             " kPa, " + (md.model.mirror ? "kept" : "not kept"));
     if (md.model.mirror) v = m;
   }
@@ -404,7 +221,7 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
                 "train: best epoch %d, val %.6f, val RMSE %.3f kPa (copy %.3f, weight-scale %.3f, "
                 "all-zero %.3f%s); binary R^2 %.3f (raw %.3f, copy %.3f) at contact threshold %.1f kPa; %.1f s",
                 s.best_epoch, s.best_val, v.rmse_kpa, v.copy_rmse_kpa, v.scale_rmse_kpa, v.zero_rmse_kpa,
-                std::isfinite(v.zoom_rmse_kpa) ? fmt(", body scale %.3f", v.zoom_rmse_kpa).c_str() : "",
+                std::isfinite(v.zoom_rmse_kpa) ? format_number(", body scale %.3f", v.zoom_rmse_kpa).c_str() : "",
                 binary_r2, v.binary_r2.front(), v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
   run.log(line);
   if (run.comm.distributed() && cs.calls > 0) {
@@ -416,11 +233,9 @@ TrainResult final_metrics(Run& run, PressureTransferNet& net, Batcher& batcher, 
   return result;
 }
 
-}  // namespace
-
 // Distributed: the ranks must agree on the data, the windows, the epoch and
 // the starting weights before the first step.
-void check_ranks_agree(const Run& run, const WindowIndex& index, const PressureTransferNet& net, const TrainState& s) {
+void check_ranks_agree(const TrainRun& run, const WindowIndex& index, const PressureTransferNet& net, const TrainState& s) {
   if (!run.comm.distributed()) return;
   const auto halves = [](const std::string& text) {
     const std::uint64_t h = std::hash<std::string>{}(text);
@@ -434,12 +249,14 @@ void check_ranks_agree(const Run& run, const WindowIndex& index, const PressureT
                       "the data, the options, the resumed epoch or the starting weights");
 }
 
+}  // namespace
+
 TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& o) {
   check_options(o);
   const auto t_start = std::chrono::steady_clock::now();
   // Joins the other ranks first: a bad rendezvous fails before any work.
   const auto comm = Communicator::join({o.world_size, o.rank, o.rendezvous, o.dist_timeout_s});
-  Run run(source, out_dir, o, *comm);
+  TrainRun run(source, out_dir, o, *comm);
   if (o.threads > 0) torch::set_num_threads(o.threads);
   plan_model(run);
   const WindowIndex index = index_windows(run);

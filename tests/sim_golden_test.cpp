@@ -1,0 +1,275 @@
+// The simulator pinned (issue 41): simulate()'s output bytes and its
+// per-frame trace (FrameTrace: per-foot force, heel / forefoot, cop_u, area;
+// load, other, sink), as FNV-1a 64 digests, on fixed clips x bodies x
+// options. Any change to what the simulator computes, however small, changes
+// a digest: a refactoring must leave them all as they are.
+//
+// Clips: a procedural walk and range of motion (always), a kneeling sway
+// built from the body (knee, hand and sole contact; always), and two real
+// CMU clips from the shared motion-capture folder (PTNET_SHARED_MOCAP,
+// cmake/ptnet.cmake: a walk that leaves the mat; squats and jogging;
+// skipped when the folder is absent). Bodies: a light short and a heavy
+// tall one. Options: the defaults with sensor noise (seed 7); the mat
+// following the body with an ideal sensor and 4 x 4 samples per cell; no
+// moment balance with 2 x 2 samples and a 30 mm band. Each case runs
+// simulate() without a trace (the fast paths) and with one (the same bytes
+// are required) and digests both the pressure and the trace.
+//
+// The digests hold at every instruction-set level of
+// scripts/check-numerics.sh (label numerics). The pressure digest is of the
+// exact bytes. The trace is digested with each double rounded to float: its
+// doubles end in libm's last bits (the load and the zero-moment point come
+// through exp, the CoM acceleration's Gaussian filter; the motion and the
+// soles' frames through sin, cos and atan2), and libm's FMA variants, which
+// the script's default level turns off, differ from the others there by a
+// few ulps (up to 7 in these cases; a float's ulp is 2^29 of them). Rounded
+// to float, the trace is the same at every level, as the pressure is (a
+// float already, where such a difference rounds away).
+//
+// Updating the digests, only when the physics changes on purpose:
+//   PTNET_GOLDEN_PRINT=1 build/tests/sim_golden_test
+// prints every case's line ({"case", "pressure digest", "trace digest"});
+// replace the kGolden table with them, and state in the commit body which
+// cases changed and why (the physics change that moved them). A failing case
+// prints its new line too. A digest change in a commit that does not state
+// one is a regression.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ptnet/body.hpp"
+#include "ptnet/hash.hpp"
+#include "ptnet/motion.hpp"
+#include "ptnet/sim.hpp"
+#include "ptnet/simulate_dataset.hpp"
+#include "sim_poses.hpp"
+
+namespace ptnet {
+namespace {
+
+struct Golden {
+  const char* name;      // clip/body/options
+  const char* pressure;  // digest of the frames count and the kPa floats
+  const char* trace;     // digest of every FrameTrace field, frame by frame
+};
+
+// clang-format off
+const std::vector<Golden> kGolden = {
+  {"walk/f150/default", "122771032acc32c2", "0dabc957022a3d5b"},
+  {"walk/f150/follow_ideal_s4", "a2ccee084a14ef3c", "85c68a9b4cd8a204"},
+  {"walk/f150/nobalance_s2", "19a3009c49a553e3", "d8b6cdd1ffb98641"},
+  {"walk/m196/default", "ef3947dc40343a0b", "aa4217dd8c24daee"},
+  {"walk/m196/follow_ideal_s4", "0677340a3803b005", "843d7d6a9fedb061"},
+  {"walk/m196/nobalance_s2", "2d4980d1ddf8e7ae", "b85f5729fbe66263"},
+  {"rom/f150/default", "68b62f17b65a8b93", "f999486c7de055f7"},
+  {"rom/f150/follow_ideal_s4", "31e123316c7babc8", "73906e6b6962f50d"},
+  {"rom/f150/nobalance_s2", "c0a7a357888e2cd0", "465dfb69002e29d1"},
+  {"rom/m196/default", "bb5ef492e8fd6e33", "a6db90a00c4952a8"},
+  {"rom/m196/follow_ideal_s4", "500f107423f1a8c5", "7a2db8ec14564e76"},
+  {"rom/m196/nobalance_s2", "df78a54c54c1bdd3", "21aa3904760275ab"},
+  {"kneel/f150/default", "bd052e87b32bb556", "bac4053103b2b6f5"},
+  {"kneel/f150/follow_ideal_s4", "fb94cf16e758f761", "e943c3468f4f8b8c"},
+  {"kneel/f150/nobalance_s2", "c537c6cd04d6380f", "c057c75e3e213370"},
+  {"kneel/m196/default", "87183c30a87caa1f", "30d3acc0e7f0da7d"},
+  {"kneel/m196/follow_ideal_s4", "81b6f95646c29d5e", "8e55422d25d9bfa9"},
+  {"kneel/m196/nobalance_s2", "f674c1e5b4ef890f", "b1d03667b8a1634e"},
+  {"002_01/f150/default", "d3e93cbbe395866c", "ad63a78e2bd4db90"},
+  {"002_01/f150/follow_ideal_s4", "e0f9e1400bee1dd3", "5843b59c5c314e77"},
+  {"002_01/f150/nobalance_s2", "b93939e349bcdce0", "e78a3cf3aad048a5"},
+  {"002_01/m196/default", "c64aa2059f3768e3", "3807f3f058f21a16"},
+  {"002_01/m196/follow_ideal_s4", "079b46a32ebf8a2c", "68954683eea93de3"},
+  {"002_01/m196/nobalance_s2", "dc85c343b7ead2f2", "7446c6a2afc07752"},
+  {"14_06/f150/default", "7c9667f5ac3c5e92", "ea8c7f8e38c76d0c"},
+  {"14_06/f150/follow_ideal_s4", "3c016e750fb16b13", "d2d7f2fcbbb9d81b"},
+  {"14_06/f150/nobalance_s2", "c76ddbee07dafde5", "7f40178a81ffbbc9"},
+  {"14_06/m196/default", "974463a404401f29", "02bf1f95c898244c"},
+  {"14_06/m196/follow_ideal_s4", "66a142dd0dfb66d1", "e92da7ef1455b830"},
+  {"14_06/m196/nobalance_s2", "4fac7959cfaf9b0e", "6dbe36eba3f848df"},
+};
+// clang-format on
+
+const std::vector<BodySpec> kBodies = {
+    {"f150", Sex::female, 150, 48, "retargeted"},
+    {"m196", Sex::male, 196, 104, "retargeted"},
+};
+
+struct Config {
+  const char* name;
+  std::function<void(SimOptions&)> set;
+};
+const std::vector<Config> kConfigs = {
+    {"default", [](SimOptions& o) { o.seed = 7; }},
+    {"follow_ideal_s4",
+     [](SimOptions& o) {
+       o.placement = Placement::follow;
+       o.sensor = ideal_sensor();
+       o.subsamples = 4;
+     }},
+    {"nobalance_s2",
+     [](SimOptions& o) {
+       o.balance_moments = false;
+       o.sensor = ideal_sensor();
+       o.subsamples = 2;
+       o.compliance_m = 0.030;
+     }},
+};
+
+std::string pressure_digest(const PressureSequence& s) {
+  Fnv1a h;
+  const std::int64_t frames = s.frames();
+  h.add(&frames, sizeof frames).add(s.kpa.data(), s.kpa.size() * sizeof(float));
+  return h.hex();
+}
+
+// At float precision: the trace's doubles end in libm's last bits (see the
+// top), the pressure's floats do not.
+std::string trace_digest(const std::vector<FrameTrace>& trace) {
+  Fnv1a h;
+  auto add = [&](double v) {
+    const float f = float(v);
+    h.add(&f, sizeof f);
+  };
+  for (const FrameTrace& t : trace) {
+    for (const FootLoad& f : t.foot) {
+      add(f.force_n), add(f.heel_n), add(f.forefoot_n), add(f.cop_u), add(f.area_m2);
+    }
+    add(t.load_n), add(t.other_n), add(t.sink_m);
+  }
+  return h.hex();
+}
+
+bool print_mode() {
+  const char* v = std::getenv("PTNET_GOLDEN_PRINT");
+  return v && *v && std::string(v) != "0";
+}
+
+// Frames in which contact off the mat or by other body parts than the soles
+// carries load: what a case covers.
+struct Coverage {
+  int off_mat = 0;  // the frame reads 0 while the body carries load
+  int other = 0;    // other_n > 0 (knees, hands, ...)
+  int both_feet = 0;
+};
+
+// Simulates one case with the given placement and compares its digests with
+// kGolden.
+Coverage check_case(const std::string& name, const Motion& motion, const Body& body,
+                    const SimOptions& o, const MotionPlacement& place) {
+  const PressureSequence fast = simulate(motion, body, o, place, nullptr);
+  std::vector<FrameTrace> trace;
+  const PressureSequence traced = simulate(motion, body, o, place, &trace);
+  Coverage cover;
+  if (fast.kpa.size() != traced.kpa.size()) {
+    ADD_FAILURE() << name << ": the trace changed the frame count";
+    return cover;
+  }
+  for (int f = 0; f < fast.frames(); ++f) {
+    const FrameTrace& x = trace[std::size_t(f)];
+    const bool zero = std::all_of(fast.frame(f), fast.frame(f) + fast.mat.cells(),
+                                  [](float v) { return v == 0; });
+    cover.off_mat += zero && x.foot[0].force_n + x.foot[1].force_n + x.other_n > 0;
+    cover.other += x.other_n > 0;
+    cover.both_feet += x.foot[0].force_n > 0 && x.foot[1].force_n > 0;
+  }
+  EXPECT_EQ(0, std::memcmp(fast.kpa.data(), traced.kpa.data(), fast.kpa.size() * sizeof(float)))
+      << name << ": the trace changed the pressure";
+  const std::string p = pressure_digest(fast), t = trace_digest(trace);
+  const std::string line = "{\"" + name + "\", \"" + p + "\", \"" + t + "\"},";
+  if (print_mode()) std::printf("  %s\n", line.c_str());
+  const Golden* g = nullptr;
+  for (const Golden& x : kGolden)
+    if (name == x.name) g = &x;
+  if (!g) {
+    ADD_FAILURE() << name << ": no digest in kGolden; add\n  " << line;
+    return cover;
+  }
+  EXPECT_EQ(p, g->pressure) << name << ": pressure changed; if on purpose (see the top): " << line;
+  EXPECT_EQ(t, g->trace) << name << ": trace changed; if on purpose (see the top): " << line;
+  return cover;
+}
+
+// Every body x options of a source motion: retargeted onto the body, placed
+// once (on the source) and scaled to the copy, as simulate_dataset does.
+Coverage check_clip(const std::string& clip, const Motion& source) {
+  Coverage all;
+  for (const BodySpec& spec : kBodies) {
+    const Body body(spec);
+    const Motion m = retarget(source, spec.height_cm);
+    for (const Config& c : kConfigs) {
+      SimOptions o;
+      c.set(o);
+      const Coverage x = check_case(clip + "/" + spec.id + "/" + c.name, m, body, o,
+                                    place_copy(source, spec.height_cm, o));
+      all.off_mat += x.off_mat, all.other += x.other, all.both_feet += x.both_feet;
+    }
+  }
+  return all;
+}
+
+Motion procedural(Category category, int performer, double seconds) {
+  GenerateOptions g;
+  g.category = category;
+  g.performer = performer;
+  g.seconds = seconds;
+  g.seed = 41;
+  return generate_motion(g);
+}
+
+// The kneeling lunge of kneel_pose swaying (1 s at 30 fps): the load and the
+// zero-moment point move with the swing, the knee and hand stay down.
+Motion kneel_sway(const Body& body) {
+  Motion m;
+  m.name = "kneel_sway";
+  m.fps = 30;
+  const Pose pose = test::kneel_pose(body);
+  for (int t = 0; t < 30; ++t) {
+    const double a = 2 * M_PI * t / 30;
+    Pose p = pose;
+    for (auto& j : p)
+      j += Eigen::Vector3d(0.03 * std::sin(a), 0.02 * std::cos(a), 0.002 * std::sin(2 * a));
+    m.frames.push_back(p);
+  }
+  return m;
+}
+
+TEST(SimGolden, EmbeddedClips) {
+  EXPECT_GT(check_clip("walk", procedural(Category::walking, 2, 6)).both_feet, 0);
+  check_clip("rom", procedural(Category::rom, 1, 6));
+  // Built on each body (no retargeting): its capsules' radii set the pose.
+  for (const BodySpec& spec : kBodies) {
+    const Body body(spec);
+    const Motion m = kneel_sway(body);
+    for (const Config& c : kConfigs) {
+      SimOptions o;
+      c.set(o);
+      const Coverage x =
+          check_case("kneel/" + spec.id + "/" + c.name, m, body, o, place_motion(m, o));
+      EXPECT_EQ(x.other, m.size()) << "the knee and the hand carry load in every frame";
+    }
+  }
+}
+
+TEST(SimGolden, RealClips) {
+  const std::string mocap = PTNET_SHARED_MOCAP;
+  if (!std::filesystem::exists(mocap + "/clips.csv"))
+    GTEST_SKIP() << mocap
+                 << " not found (the shared CMU clips): the real clips' digests are not checked";
+  for (const char* file : {"002_01.bvh", "14_06.bvh"}) {
+    const std::vector<ClipSource> clips =
+        clips_from_files({mocap + "/" + file}, mocap + "/clips.csv", {});
+    ASSERT_EQ(clips.size(), 1u) << file;
+    const Coverage x = check_clip(clips[0].meta.motion_id, load_clip(clips[0], 30));
+    if (std::string(file) == "002_01.bvh")
+      EXPECT_GT(x.off_mat, 0) << "the walk leaves the fixed mat";
+  }
+}
+
+}  // namespace
+}  // namespace ptnet
