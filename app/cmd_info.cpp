@@ -16,6 +16,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/markers.hpp"
 #include "ptnet/motion.hpp"
+#include "ptnet/sim.hpp"
 #include "ptnet/strings.hpp"
 
 namespace ptnet::cli {
@@ -37,6 +38,22 @@ Units units_of(const Bvh& bvh, Units asked, UpAxis up) {
   for (Units u : {Units::m, Units::cm, Units::mm, Units::in, Units::cmu})
     if (metres_per_unit(bvh, u, up) == m) return u;
   return Units::automatic;
+}
+
+// What the motion lacks to carry its own dynamics (check_dynamics), and the
+// warning simulate prints for it.
+void add_dynamics(nlohmann::ordered_json& j, const Motion& motion) {
+  const MotionDynamics d = check_dynamics(motion, SimOptions{});
+  j["dynamics"] = {{"frozen_pelvis", d.frozen_pelvis}, {"unsupported", d.unsupported},
+                   {"warning", dynamics_warning(std::filesystem::path(j["file"].get<std::string>()).stem().string(), d)}};
+}
+
+void print_warnings(std::ostringstream& s, const nlohmann::ordered_json& j) {
+  const std::string w = j["dynamics"]["warning"].get<std::string>();
+  for (std::size_t a = 0, b; a < w.size(); a = b + 1) {
+    b = w.find('\n', a);
+    s << "  warning           " << w.substr(a, b - a) << "\n";
+  }
 }
 
 nlohmann::ordered_json describe_bvh(const InfoCli& o) {
@@ -66,6 +83,7 @@ nlohmann::ordered_json describe_bvh(const InfoCli& o) {
   j["tpose_frame0"] = tpose;
   j["tpose_dropped"] = tpose && !o.keep_tpose;
   j["standing_height_m"] = standing_height(motion);
+  add_dynamics(j, motion);
   nlohmann::ordered_json canonical;
   for (int k = 0; k < kJointCount; ++k)
     canonical[joint_name(k)] = bvh.joints[std::size_t(map[std::size_t(k)])].name;
@@ -101,6 +119,7 @@ nlohmann::ordered_json describe_trc(const InfoCli& o) {
   j["stature_m"] = report.stature_m;
   j["treadmill_belt_mps"] = report.belt_speed_mps;
   j["standing_height_m"] = standing_height(motion);
+  add_dynamics(j, motion);
   j["marker_names"] = trc.markers;
   return j;
 }
@@ -134,6 +153,7 @@ void print_trc(const nlohmann::ordered_json& j) {
   for (const auto& c : j["calibrated"]) s << "  from static trial " << c.get<std::string>() << "\n";
   s << "  joints\n";
   for (const auto& m : j["methods"]) s << "    " << m.get<std::string>() << "\n";
+  print_warnings(s, j);
   std::cout << s.str();
 }
 
@@ -156,6 +176,7 @@ void print_text(const nlohmann::ordered_json& j) {
     << "\n";
   s << "  standing height   " << std::setprecision(3) << j["standing_height_m"].get<double>()
     << " m\n";
+  print_warnings(s, j);
   s << "  canonical joints\n";
   for (const auto& [k, v] : j["canonical"].items())
     s << "    " << std::left << std::setw(16) << k << v.get<std::string>() << "\n";

@@ -43,6 +43,7 @@ struct SimulateCli {
   SimulateDatasetOptions dataset;  // fps, seed, threads, compression, force (sim: from `sim` below)
   SimSettings sim;
   std::string units = "auto", up = "y";
+  std::string marker_map;
   bool no_floor = false;
   std::string shard;  // "K/N"
   std::vector<double> speeds;  // empty: each clip once, as recorded
@@ -74,6 +75,7 @@ void run(const SimulateCli& c) {
     mo.units = parse_units(c.units);
     mo.up = parse_up_axis(c.up);
     mo.fps = o.fps;
+    mo.marker_map = c.marker_map;
     clips = clips_from_files(c.motions, c.clips, mo);
   }
   if (!c.speeds.empty()) clips = clips_at_speeds(clips, c.speeds);
@@ -97,9 +99,9 @@ void setup(CLI::App& app) {
       "simulate",
       "Simulate every motion clip on every body (retargeted onto the body's height) on a\n"
       "pressure mat and write the HDF5 dataset (docs/formats.md; options: docs/simulate.md).");
-  cmd->add_option("--motions", c->motions, "BVH files or folders (searched recursively for *.bvh)");
+  cmd->add_option("--motions", c->motions, "BVH or marker (.trc) files, or folders (searched recursively for both)");
   cmd->add_option("--clips", c->clips,
-                  "Clips CSV (file,subject,category,take[,metres_per_unit,up]); alone: every clip it lists");
+                  "Clips CSV (file,subject,category,take[,metres_per_unit,up,marker_map,static]); alone: every clip it lists");
   cmd->add_flag("--embedded", c->embedded, "Procedural motions (as ptnet demo) instead of BVH files");
   cmd->add_option("--bodies", c->bodies, "Bodies CSV (id,sex,height_cm,weight_kg[,role])")->required();
   cmd->add_option("-o,--out", c->out, "Output dataset (.h5)")->required();
@@ -128,6 +130,14 @@ void setup(CLI::App& app) {
       ->capture_default_str()->check(in_range(r.compliance_mm));
   cmd->add_option("--subsamples", c->sim.subsamples, "Depth samples per cell side")
       ->capture_default_str()->check(int_range(r.subsamples));
+  cmd->add_option("--forces", c->dataset.forces_dir,
+                  "Also write each sequence's simulated ground reaction (total and per foot, N and body weights,\n"
+                  "CoP along the foot) into this folder as NAME.mot (OpenSim storage) or NAME.csv");
+  cmd->add_option("--forces-format", c->dataset.forces_format, "mot or csv")
+      ->capture_default_str()->check(CLI::IsMember({"mot", "csv"}));
+  cmd->add_option("--marker-map", c->marker_map,
+                  ".trc files the clips CSV does not describe: a shipped marker map (delaware, plugin-gait, common)\n"
+                  "or a map file (default: the shipped map that places the file)");
   cmd->add_flag("--ideal-sensor", c->sim.ideal_sensor, "No crosstalk, saturation, noise, threshold or quantisation");
   const auto sensor_default = [](double v) { return " (default " + number_text(v) + ")"; };
   cmd->add_option("--crosstalk", c->sim.crosstalk, "Fraction leaking to each of 4 neighbours" + sensor_default(sensor.crosstalk))

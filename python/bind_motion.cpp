@@ -34,21 +34,38 @@ std::vector<std::string> joint_names() {
 
 // As `ptnet simulate` does each sequence: the source motion retargeted onto
 // the body's height, placed as the source is placed, scaled (place_copy).
-py::array_t<float> simulate_motion(const Motion& motion, const BodySpec& spec, const SimSettings& settings,
-                                   bool retarget_to_body) {
+// The pressure, and with `forces` also the force table as a dict of numpy
+// arrays (time_s, total_n, left_n, right_n, left_cop_u, right_cop_u).
+py::object simulate_motion(const Motion& motion, const BodySpec& spec, const SimSettings& settings,
+                           bool retarget_to_body, bool forces) {
   const SimOptions options = sim_options(settings);  // `ptnet simulate`'s mapping, defaults and ranges
   PressureSequence out;
+  ForceTable table;
   {
     py::gil_scoped_release release;
     const Body body(spec);  // validates
-    if (retarget_to_body) {
-      const Motion copy = retarget(motion, spec.height_cm);
-      out = simulate(copy, body, options, place_copy(motion, spec.height_cm, options));
-    } else {
-      out = simulate(motion, body, options);
-    }
+    std::vector<FrameTrace> trace;
+    const Motion copy = retarget_to_body ? retarget(motion, spec.height_cm) : motion;
+    const MotionPlacement place =
+        retarget_to_body ? place_copy(motion, spec.height_cm, options) : place_motion(motion, options);
+    out = simulate(copy, body, options, place, forces ? &trace : nullptr);
+    if (forces) table = force_table(trace, copy, body);
   }
-  return pressure_array(std::move(out));
+  py::array_t<float> pressure = pressure_array(std::move(out));
+  if (!forces) return std::move(pressure);
+  auto column = [&](auto get) {
+    py::array_t<double> a(py::ssize_t(table.time_s.size()));
+    for (std::size_t t = 0; t < table.time_s.size(); ++t) a.mutable_at(py::ssize_t(t)) = get(t);
+    return a;
+  };
+  py::dict f;
+  f["time_s"] = column([&](std::size_t t) { return table.time_s[t]; });
+  f["total_n"] = column([&](std::size_t t) { return table.total_n[t]; });
+  f["left_n"] = column([&](std::size_t t) { return table.foot_n[t][0]; });
+  f["right_n"] = column([&](std::size_t t) { return table.foot_n[t][1]; });
+  f["left_cop_u"] = column([&](std::size_t t) { return table.cop_u[t][0]; });
+  f["right_cop_u"] = column([&](std::size_t t) { return table.cop_u[t][1]; });
+  return py::make_tuple(std::move(pressure), std::move(f));
 }
 
 // ptnet.Body, the body functions and ptnet.simulate.
@@ -94,7 +111,7 @@ void bind_bodies_and_simulate(py::module_& m) {
         [](const Motion& motion, const py::object& body, std::uint64_t seed, const std::string& placement,
            bool retarget, int rows, int cols, double pitch_m, double compliance_mm, int subsamples, bool ideal,
            std::optional<double> crosstalk, std::optional<double> saturation_kpa, std::optional<double> noise_kpa,
-           std::optional<double> threshold_kpa, std::optional<double> quantum_kpa) {
+           std::optional<double> threshold_kpa, std::optional<double> quantum_kpa, bool forces) {
           const BodySpec spec = body_argument(body, "body");
           SimSettings a;
           a.seed = seed;
@@ -110,7 +127,7 @@ void bind_bodies_and_simulate(py::module_& m) {
           a.noise_kpa = noise_kpa;
           a.threshold_kpa = threshold_kpa;
           a.quantum_kpa = quantum_kpa;
-          return simulate_motion(motion, spec, a, retarget);
+          return simulate_motion(motion, spec, a, retarget, forces);
         },
         py::arg("motion"), py::arg("body"), py::kw_only(), py::arg("seed") = SimSettings{}.seed,
         py::arg("placement") = SimSettings{}.placement, py::arg("retarget") = true, py::arg("rows") = SimSettings{}.rows,
@@ -118,8 +135,10 @@ void bind_bodies_and_simulate(py::module_& m) {
         py::arg("compliance_mm") = SimSettings{}.compliance_mm, py::arg("subsamples") = SimSettings{}.subsamples,
         py::arg("ideal_sensor") = SimSettings{}.ideal_sensor, py::arg("crosstalk") = py::none(), py::arg("saturation_kpa") = py::none(),
         py::arg("noise_kpa") = py::none(), py::arg("threshold_kpa") = py::none(),
-        py::arg("quantum_kpa") = py::none(),
-        "The motion on the body, pressed onto the mat: float32 [T, rows, cols] kPa. With retarget (the default) "
+        py::arg("quantum_kpa") = py::none(), py::arg("forces") = false,
+        "The motion on the body, pressed onto the mat: float32 [T, rows, cols] kPa; with forces=True, "
+        "(pressure, forces) where forces is a dict of float64 [T] arrays: time_s, total_n, left_n, right_n, "
+        "left_cop_u, right_cop_u (the simulated ground reaction, `ptnet simulate --forces`). With retarget (the default) "
         "the motion is the source clip, retargeted onto the body's height and placed as `ptnet simulate` places "
         "it, so simulate(m, body, seed=sequence_seed(S, name)) equals the CLI's sequence NAME with --seed S. "
         "Options and sensor defaults: docs/simulate.md.");

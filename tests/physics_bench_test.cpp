@@ -64,6 +64,7 @@ TEST(Contacts, AHalfSineIsFoundWithItsCrossingsPeakImpulseAndRate) {
   for (std::size_t i = 0; i < c.size(); ++i) {
     const double t0 = 0.4 * double(i), t20 = std::asin(20.0 / 600) / M_PI * 0.25;  // where 600 sin crosses 20 N
     EXPECT_EQ(c[i].foot, 1);
+    EXPECT_TRUE(c[i].whole);
     EXPECT_NEAR(c[i].start_s, t0 + t20, 0.002);  // linear between samples 17 ms apart
     EXPECT_NEAR(c[i].end_s - c[i].start_s, 0.25 - 2 * t20, 0.004);
     EXPECT_NEAR(c[i].peak_n, 600, 600 * 0.02);
@@ -94,4 +95,78 @@ TEST(ForceTable, WrittenAsOpenSimStorageAndCsv) {
   const std::string csv = ptnet::read_text_file((dir / "a.csv").string());
   EXPECT_EQ(csv.rfind("time,total_force_vy,total_force_bw,", 0), 0u);
   fs::remove_all(dir);
+}
+TEST(PhysicsBench, TheSimulatorMeetsThePlatesOfRealWalkingAndRunning) {
+  const std::string dir = PTNET_SHARED_GAIT;
+  if (!fs::exists(dir + "/walk_s01.trc")) GTEST_SKIP() << "../shared/real-gait not found";
+  const auto trials = ptnet::read_gait_trials(std::string(PTNET_SOURCE_DIR) + "/bench/real-gait.csv", dir);
+  ASSERT_EQ(trials.size(), 2u);
+  for (const auto& trial : trials) {
+    SCOPED_TRACE(trial.name);
+    const ptnet::GaitTrialResult r = ptnet::run_gait_trial(trial, {});
+    const ptnet::ForceSource &s = r.simulated, &n = r.naive;
+    const bool run = trial.name == "run_s02";
+    EXPECT_EQ(r.fps, 60);
+    int whole = 0;
+    for (const auto& c : r.plates.contacts) whole += c.whole;
+    EXPECT_EQ(s.matched, whole);
+    EXPECT_LE(s.peak_error_pct, run ? 15 : 10);
+    EXPECT_LE(s.stance_error_ms, run ? 30 : 40);
+    EXPECT_LT(s.peak_error_pct, n.peak_error_pct);
+    EXPECT_LT(s.rmse_bw, n.rmse_bw);
+    EXPECT_LT(s.stride_impulse_error_pct, 5);
+    if (run) {
+      EXPECT_GT(r.flight_frames, 100);
+      EXPECT_GE(s.flight_recall, 0.9);
+      EXPECT_LE(s.rmse_bw, 0.2);
+    } else {
+      EXPECT_LE(s.rmse_bw, 0.10);
+      EXPECT_LE(s.cop_rms, 0.15);
+      EXPECT_LT(s.cop_rms, n.cop_rms);
+    }
+  }
+}
+
+TEST(PhysicsBench, OvergroundPlatesAreComparedOnlyWhereTheySeeEveryFoot) {
+  const std::string dir = PTNET_SHARED_GAIT;
+  if (!fs::exists(dir + "/walk_s01.trc")) GTEST_SKIP() << "../shared/real-gait not found";
+  // The walk as if its second plate ended at 1.2 s: the steps after it are
+  // off the plates.
+  std::istringstream in(ptnet::read_text_file(dir + "/walk_s01_grf.mot"));
+  std::ostringstream out;
+  bool data = false;
+  std::vector<std::string> names;
+  for (std::string line; std::getline(in, line);) {
+    if (!data || names.empty()) {
+      out << line << "\n";
+      if (line.rfind("endheader", 0) == 0) data = true;
+      else if (data) {
+        std::istringstream w(line);
+        for (std::string n; w >> n;) names.push_back(n);
+      }
+      continue;
+    }
+    std::istringstream w(line);
+    std::vector<std::string> v;
+    for (std::string x; w >> x;) v.push_back(x);
+    for (std::size_t c = 0; c < v.size(); ++c)
+      if (std::stod(v[0]) > 1.2 && names[c].rfind("1_ground_force_v", 0) == 0) v[c] = "0";
+    for (std::size_t c = 0; c < v.size(); ++c) out << (c ? "\t" : "") << v[c];
+    out << "\n";
+  }
+  const fs::path tmp = fs::temp_directory_path() / ("ptnet_overground_" + std::to_string(::getpid()) + ".mot");
+  std::ofstream(tmp) << out.str();
+  ptnet::GaitTrial t = ptnet::read_gait_trials(std::string(PTNET_SOURCE_DIR) + "/bench/real-gait.csv", dir)[0];
+  t.plates = tmp.string();
+  const ptnet::GaitTrialResult all = ptnet::run_gait_trial(t, {});
+  EXPECT_EQ(all.coverage, "some");  // auto: a foot on the floor that no plate sees
+  int compared = 0;
+  for (bool c : all.compared) compared += c;
+  EXPECT_GT(compared, 40);
+  EXPECT_LT(compared, int(all.time_s.size()) - 40);
+  EXPECT_LE(all.simulated.rmse_bw, 0.10);  // over the frames the plates see whole
+  t.coverage = "all";
+  const ptnet::GaitTrialResult forced = ptnet::run_gait_trial(t, {});
+  EXPECT_GT(forced.simulated.rmse_bw, 0.3);  // the unseen steps counted as the simulator's error
+  fs::remove(tmp);
 }

@@ -71,7 +71,6 @@
 namespace ptnet {
 namespace {
 
-using test::OffMat;
 using test::RefSample;
 
 constexpr double kU = 1.0 / (1 << 24);  // float's unit roundoff
@@ -305,33 +304,26 @@ TEST(SimReference, FastPathMatchesThePlainOne) {
       worst.frames, worst.contact, worst.level, worst.map, worst.force, worst.cop);
 }
 
-// What the simulator does off the mat today, against what ptnet/sim.hpp
-// describes (the lowest surface per sample): off the mat every surface's
-// record is a sample of its own (Rasteriser::record), so a position under a
-// capsule's overlapping spheres counts up to ~3 times and contact off the
-// mat takes more than its share: kneeling with the shank over the mat's end,
-// the 104 kg body's left sole carries 250 N where the lowest-per-position
-// rule gives 297 N (the soles' duplicates, along the seam of their two
-// patches, carry nothing in these poses). FastPathMatchesThePlainOne compares
-// with OffMat::each_record. This test fails once the simulator keeps the
-// lowest per position off the mat too: then compare with OffMat::lowest
-// there and delete this test.
-TEST(SimReference, OffTheMatEachSurfaceRecordCountsToday) {
+// Off the mat a position keeps its lowest surface, as on the mat (before,
+// every surface's record there was a sample of its own: a position under a
+// capsule's overlapping spheres counted up to ~3 times, and kneeling with
+// the shank over the mat's end the 104 kg body's left sole carried 250 N
+// instead of 297 N).
+TEST(SimReference, OffTheMatEachPositionCountsOnce) {
   const Body body(kBodies[1]);
   const SimOptions o;
   const double W = body.mass_kg() * kG;
   const PosedBody posed = pose_body(body, test::kneel_pose(body, -0.6, 0));
-  auto left_sole_n = [&](OffMat rule) {
-    const std::vector<RefSample> s = test::reference_depth(body, posed, o, rule);
-    return test::reference_distribute(s, test::reference_sink_level(s, W, o), W, nullptr, o)
-        .trace.foot[0]
-        .force_n;
-  };
+  const std::vector<RefSample> s = test::reference_depth(body, posed, o);
+  const double reference = test::reference_distribute(s, test::reference_sink_level(s, W, o), W, nullptr, o)
+                               .trace.foot[0]
+                               .force_n;
   FastPath r(o);
-  const Fast fast = run_fast(
-      r, {"kneel off the end", &body, test::kneel_pose(body, -0.6, 0), W, std::nullopt}, o);
-  EXPECT_NEAR(fast.trace.foot[0].force_n, left_sole_n(OffMat::each_record), 0.05);
-  EXPECT_LT(fast.trace.foot[0].force_n, left_sole_n(OffMat::lowest) - 30);
+  const Fast fast = run_fast(r, {"kneel off the end", &body, test::kneel_pose(body, -0.6, 0), W, std::nullopt}, o);
+  EXPECT_GT(reference, 290);
+  // Within the fast path's own error (its histogram sink level; FastPathMatchesThePlainOne
+  // holds it to its bounds), far from the 47 N the duplicates cost.
+  EXPECT_NEAR(fast.trace.foot[0].force_n, reference, 1.0);
 }
 
 }  // namespace

@@ -2,11 +2,6 @@
 // simulator checked against real force plates.
 //
 //   ptnet::ForcePlates fp = ptnet::read_grf_mot("walk_grf.mot");   // OpenSim plates [N, P]
-//   std::vector<ptnet::FrameTrace> trace;
-//   ptnet::simulate(motion, body, opt, &trace);
-//   ptnet::ForceTable f = ptnet::force_table(trace, motion, body);  // N, BW, CoP per frame
-//   ptnet::write_force_table(f, "walk_sim.mot", /*force=*/false);    // OpenSim / spreadsheets
-//
 //   auto trials = ptnet::read_gait_trials("bench/real-gait.csv", "../shared/real-gait");
 //   ptnet::GaitTrialResult r = ptnet::run_gait_trial(trials[0], {});  // plates vs simulator vs naive
 //   ptnet::write_physics_report({r}, "physics", /*force=*/false);     // results.json + index.html
@@ -49,24 +44,6 @@ struct ForcePlates {
 ForcePlates parse_grf_mot(std::string_view text, const std::string& source);
 ForcePlates read_grf_mot(const std::string& path);
 
-// --------------------------------------------------------- simulated forces
-
-// The simulated vertical ground reaction per frame: total and per foot, in N
-// and BW, and the centre of pressure along each loaded foot (0 heel .. 1 toe).
-struct ForceTable {
-  double mass_kg = 0;
-  std::vector<double> time_s;                 // [T] the motion's clock (Motion::start_s + t / fps)
-  std::vector<double> total_n;                // [T] on and off the mat, every body part
-  std::vector<std::array<double, 2>> foot_n;  // [T] [left, right]
-  std::vector<std::array<double, 2>> cop_u;   // [T] [left, right]; NaN: foot unloaded
-};
-ForceTable force_table(const std::vector<FrameTrace>& trace, const Motion& motion, const Body& body);
-// Writes the table as an OpenSim storage file (.mot: time, then
-// total_force_vy, total_force_bw, l_/r_ground_force_vy, l_/r_force_bw,
-// l_/r_cop_u) or as CSV (.csv, the same columns), atomically; refuses to
-// overwrite unless `force`.
-void write_force_table(const ForceTable& table, const std::string& path, bool force);
-
 // ------------------------------------------------------------------ gait
 
 // One foot's contact: a run of samples above the contact threshold, its
@@ -77,6 +54,7 @@ struct Contact {
   double peak_n = 0;             // largest force in the contact
   double impulse_ns = 0;         // integral of the force over the contact (trapezoids)
   double loading_rate_n_s = 0;   // 20 % -> 80 % of the peak on the rising edge, over its duration
+  bool whole = true;             // begins and ends inside the series (false: cut by its first or last sample)
 };
 // The contacts of a force series (time_s and force_n of equal length).
 std::vector<Contact> find_contacts(const std::vector<double>& time_s, const std::vector<double>& force_n,
@@ -88,10 +66,16 @@ struct GaitTrial {
   std::string markers, static_markers, plates;  // paths; static may be ""
   std::string marker_map;                      // "": chosen
   BodySpec body;                               // the subject (sex, stature, mass)
+  // Which steps the plates see: "all" (a treadmill, an instrumented
+  // walkway: every frame is compared), "some" (plates in an overground
+  // walkway: only the frames where every foot in contact, by the plates or
+  // the simulator, is on a plate) or "auto" ("some" when the simulator loads
+  // a foot that no plate sees in more than a tenth of its loaded frames).
+  std::string coverage = "auto";
 };
 // A trials CSV (docs/physics.md): columns trial, markers, plates, sex,
-// height_cm, weight_kg; static and marker_map optional. Paths relative to
-// `data_dir` ("": the CSV's folder).
+// height_cm, weight_kg; static, marker_map and coverage optional. Paths
+// relative to `data_dir` ("": the CSV's folder).
 std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir);
 
 struct PhysicsBenchOptions {
@@ -100,6 +84,7 @@ struct PhysicsBenchOptions {
   double contact_n = 20;      // a foot is in contact above this force (N)
   double flight_bw = 0.05;    // a frame is in flight below this total force (BW)
   double assign_m = 0.15;     // a plate's force belongs to the foot within this distance of its CoP
+                              // (horizontal distance to the heel-toe line plus the foot's height)
   PhysicsBenchOptions();
 };
 
@@ -111,7 +96,8 @@ struct ForceSource {
   std::vector<std::array<double, 2>> foot_bw;  // [T] [left, right]
   std::vector<std::array<double, 2>> cop_u;    // [T] NaN: unloaded or unknown
   std::vector<Contact> contacts;
-  // Against the plates (NaN for the plates themselves):
+  // Against the plates (NaN for the plates themselves); per-contact figures
+  // over the plates' whole contacts (Contact::whole):
   double rmse_bw = NAN;           // total force, over the compared frames
   double peak_error_pct = NAN;    // mean |peak - plates' peak| / plates' peak over matched contacts
   double stance_error_ms = NAN;   // mean |stance - plates' stance|
@@ -127,7 +113,9 @@ struct GaitTrialResult {
   double fps = 0;
   std::vector<double> time_s;  // [T]
   ForceSource plates, simulated, naive;
-  int flight_frames = 0;       // the plates' frames below flight_bw
+  std::string coverage;        // "all" or "some" (GaitTrial::coverage decided)
+  std::vector<bool> compared;  // [T] the frames the figures are over
+  int flight_frames = 0;       // the plates' frames below flight_bw (compared)
   int single_stance_frames = 0;
   double belt_mps = 0;         // the treadmill belt removed
   ForceTable table;            // the simulator's forces (write_force_table)

@@ -145,11 +145,40 @@ struct MotionPlacement {
   // on every copy (detail::foot_pitch_offsets decides per copy otherwise, and
   // its "planted" speed test passes other frames on a short copy).
   std::array<double, 2> foot_pitch{0, 0};
+  // Each foot's height correction [left, right] (m, lowered > 0): the level
+  // its sole stands at, the 20th percentile over the motion of its lowest
+  // surface point above the floor, when within 3 cm of it (a capture or
+  // retargeting error: a foot floating above, or sunk into, the floor it
+  // stands on, as marker-derived joint centres leave it); 0 beyond (a foot
+  // held up). Found on the same reference copy as the pitch, scaled to each copy.
+  std::array<double, 2> foot_lift{0, 0};
   // The placement of a copy whose horizontal root path is this motion's
   // scaled by `ratio` about `anchor` (a retargeted copy: ratio =
   // retarget_scale(source, height_cm)): same axis, centres and floor scaled.
   MotionPlacement scaled(double ratio) const;
 };
+
+// What a motion lacks to carry its own dynamics (docs/simulate.md, "Motions
+// that cannot carry their dynamics").
+struct MotionDynamics {
+  // Frames in stretches of at least 0.5 s whose pelvis height is fixed (to
+  // 1 micrometre a frame) while a foot steps (moves faster than 0.3 m/s):
+  // a rig that drives the hips by rotations only. No load model finds a
+  // flight or a bounce in them: their load stays near body weight.
+  double frozen_pelvis = 0;
+  // Frames where no body surface is on the floor (within the compliance
+  // band) and that are no flight: a stretch off the floor longer than 0.6 s,
+  // or one over 0.15 s through which the centre of mass does not fall (its
+  // mean vertical acceleration inside is above -g / 2): the body stands on
+  // something that is not the floor (steps, objects), and those frames read
+  // no load.
+  double unsupported = 0;
+};
+// The check, on the motion's copy at kFloorReferenceHeightCm as placed by
+// place_motion(motion, options).
+MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options);
+// "002_03: ..." one line per finding, or "" when the motion carries its dynamics.
+std::string dynamics_warning(const std::string& name, const MotionDynamics& dynamics);
 
 // The placement of `motion` for options.placement (fixed: the pelvis path's
 // bounding box centred; follow: its Gaussian-smoothed path, sigma
@@ -189,6 +218,26 @@ struct FrameTrace {
 PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
                           std::vector<FrameTrace>* trace);
 
+// The simulated vertical ground reaction per frame, from a trace: total and
+// per foot, in N, and the centre of pressure along each loaded foot (0 heel
+// .. 1 toe); `ptnet simulate --forces` writes one per sequence.
+//   std::vector<ptnet::FrameTrace> trace;
+//   ptnet::simulate(motion, body, opt, &trace);
+//   ptnet::write_force_table(ptnet::force_table(trace, motion, body), "walk.mot", false);
+struct ForceTable {
+  double mass_kg = 0;
+  std::vector<double> time_s;                 // [T] the motion's clock (Motion::start_s + t / fps)
+  std::vector<double> total_n;                // [T] on and off the mat, every body part
+  std::vector<std::array<double, 2>> foot_n;  // [T] [left, right]
+  std::vector<std::array<double, 2>> cop_u;   // [T] [left, right]; NaN: foot unloaded
+};
+ForceTable force_table(const std::vector<FrameTrace>& trace, const Motion& motion, const Body& body);
+// Writes the table as an OpenSim storage file (.mot or .sto: time, then
+// total_force_vy, total_force_bw, l_/r_ground_force_vy, l_/r_force_bw,
+// l_/r_cop_u) or as CSV (.csv, the same columns), atomically; refuses to
+// overwrite unless `force`.
+void write_force_table(const ForceTable& table, const std::string& path, bool force);
+
 // simulate() with a given placement (place_copy: the source motion's,
 // scaled), used whatever options.placement says; trace as above. Throws Error
 // if placement.centre does not have one entry per frame.
@@ -201,7 +250,8 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
 // cost of one simulation plus the sensor model per seed.
 std::vector<PressureSequence> simulate_reads(const Motion& motion, const Body& body, const SimOptions& options,
                                              const MotionPlacement& placement,
-                                             const std::vector<std::uint64_t>& seeds);
+                                             const std::vector<std::uint64_t>& seeds,
+                                             std::vector<FrameTrace>* trace = nullptr);
 
 // Total vertical load (N) per frame, F = m (g + a_z) clamped at 0 (before the
 // contact test): [T], N.
@@ -221,12 +271,14 @@ struct SimJob {
 
 // Runs every job on `threads` threads (0: hardware concurrency); result i is
 // job i, identical whatever the thread count; with `rereads`, (*rereads)[i][k]
-// is job i read with seed reread_seeds[k]. `progress` gets a count
+// is job i read with seed reread_seeds[k]; with `forces`, (*forces)[i] is job
+// i's force_table (its trace: a slower simulation). `progress` gets a count
 // {"simulate", done, total, "sequences"} from the worker threads
 // (serialised), if given.
 std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs, const SimOptions& options,
                                             int threads, const ProgressFn& progress = {},
-                                            std::vector<std::vector<PressureSequence>>* rereads = nullptr);
+                                            std::vector<std::vector<PressureSequence>>* rereads = nullptr,
+                                            std::vector<ForceTable>* forces = nullptr);
 
 // A per-sequence seed from a run seed and the sequence name (FNV-1a + mix).
 std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name);

@@ -153,6 +153,12 @@ struct SimulateDatasetOptions {
   // gives the unsharded file's sequences, attributes and bodies.
   int shard_index = 0;
   int shard_count = 1;
+  // Each sequence's simulated ground reaction (force_table: total and per
+  // foot, N, BW, CoP along the foot) as `forces_dir`/<name>.<forces_format>
+  // ("mot": OpenSim storage, or "csv"), written once the dataset is;
+  // "": none. Simulating with forces traces every frame: slower.
+  std::string forces_dir;
+  std::string forces_format = "mot";
   // Counts as work completes: {"load", done, total, "clips"}, then
   // {"simulate", done, total, "sequences"}. Calls are serialised but may come
   // from worker threads.

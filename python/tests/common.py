@@ -10,7 +10,7 @@ FIXTURES = os.path.join(TMP, "fixtures")
 TEST_DATA = os.environ.get("PTNET_TEST_DATA", "")
 MODELS = ("frame", "frame_context", "faithful", "skip", "residual")
 # Seeds of the fixtures' training (make_fixtures.py) and of the weight
-# perturbation of test_roundtrip: scripts/check-cpu-variants.sh varies them,
+# perturbation of test_roundtrip: set them to vary the trained weights,
 # since trained weights differ from one CPU to another.
 FIXTURE_SEED = int(os.environ.get("PTNET_FIXTURE_SEED", "1"))
 PERTURB_SEED = int(os.environ.get("PTNET_PERTURB_SEED", "0"))

@@ -87,6 +87,44 @@ class SimulateTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "expected paper or cover"):
             ptnet.sample_bodies(sampling="uniform")
 
+    def test_forces_are_the_pressure_times_the_area(self):
+        m = ptnet.read_bvh(self.bvh)
+        p, f = ptnet.simulate(m, self.bodies[0], placement="follow", ideal_sensor=True, forces=True)
+        self.assertEqual(set(f), {"time_s", "total_n", "left_n", "right_n", "left_cop_u", "right_cop_u"})
+        self.assertEqual(f["total_n"].shape, (p.shape[0],))
+        # The mat follows the body: every newton of the trace is on the mat.
+        on_mat = p.astype(np.float64).sum(axis=(1, 2)) * 0.02 * 0.02 * 1000
+        np.testing.assert_allclose(on_mat, f["total_n"], rtol=1e-4, atol=1e-3)
+        np.testing.assert_allclose(f["left_n"] + f["right_n"], f["total_n"], rtol=1e-6, atol=1e-6)
+        np.testing.assert_allclose(np.diff(f["time_s"]), 1 / 30)
+        loaded = f["left_n"] > 0
+        self.assertTrue(np.all((f["left_cop_u"][loaded] >= 0) & (f["left_cop_u"][loaded] <= 1)))
+        self.assertTrue(np.all(np.isnan(f["left_cop_u"][~loaded])))
+
+    def test_read_motion_reads_markers(self):
+        # A standing subject in gait2354 marker names, lab mm, Y up.
+        names, at = [], []
+        for side, k in (("R.", 1), ("L.", -1)):
+            for n, x, y, z in (("ASIS", 120, 1000, 120), ("Heel", -60, 40, 100), ("Toe.Tip", 220, 20, 90),
+                               ("Acromium", 0, 1450, 190)):
+                names.append(side + n)
+                at.append((x, y, k * z))
+        names.append("V.Sacral")
+        at.append((-100, 1000, 0))
+        rows = ["PathFileType\t4\t(X/Y/Z)\ts.trc", "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits",
+                f"100\t100\t20\t{len(names)}\tmm", "Frame#\tTime\t" + "\t\t\t".join(names), "", ""]
+        for f in range(20):
+            rows.append(f"{f + 1}\t{f / 100}\t" + "\t".join(f"{x}\t{y}\t{z}" for x, y, z in at))
+        path = os.path.join(self.dir, "stand.trc")
+        with open(path, "w") as out:
+            out.write("\n".join(rows) + "\n")
+        m = ptnet.read_motion(path, fps=0)
+        self.assertEqual((len(m), m.fps, m.start_s), (20, 100, 0))
+        hips = m.positions[0, [ptnet.Motion.joint_names.index(j) for j in ("left_hip", "right_hip")]]
+        self.assertAlmostEqual(np.linalg.norm(hips[0] - hips[1]), 2 * (0.33 * 0.24 + 0.0073), places=9)  # Harrington
+        with self.assertRaisesRegex(ValueError, "stand.trc: marker map .plugin-gait. cannot place the markers: it lacks r_asis"):
+            ptnet.read_motion(path, marker_map="plugin-gait")
+
     def test_metrics(self):
         t = np.zeros((2, 80, 28), np.float32)
         t[:, 10:20, 5:9] = 40

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <future>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/markers.hpp"
 #include "ptnet/zip_check.hpp"
 #include "core/parallel.hpp"
 
@@ -73,14 +75,23 @@ void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptio
   places.assign(clips.size(), MotionPlacement{});
   std::mutex progress_mutex;
   int loaded = 0;
+  std::vector<std::string> warnings(clips.size());
   parallel_for(nc, threads, [&](int i) {
     motions[std::size_t(i)] = load_clip(clips[std::size_t(i)], options.fps);
     places[std::size_t(i)] = place_motion(motions[std::size_t(i)], options.sim);
+    warnings[std::size_t(i)] =
+        dynamics_warning(clips[std::size_t(i)].meta.motion_id, check_dynamics(motions[std::size_t(i)], options.sim));
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       options.progress(progress_count("load", ++loaded, nc, "clips"));
     }
   });
+  // In clip order, whatever the threads did first.
+  for (const std::string& w : warnings)
+    for (std::size_t a = 0, b; a < w.size(); a = b + 1) {
+      b = w.find('\n', a);
+      if (options.progress) options.progress(progress_line("simulate", "warning: " + w.substr(a, b - a)));
+    }
 }
 
 // Sizes before allocating: sequence count, then the memory of the metadata
@@ -136,7 +147,8 @@ std::vector<SequenceMeta> sequence_metas(const std::vector<ClipSource>& clips, c
 void simulate_chunks(const std::vector<Motion>& motions, const std::vector<MotionPlacement>& places,
                      const std::vector<BodySpec>& bodies, const std::vector<Body>& built,
                      const std::vector<SequenceMeta>& metas, const SimulateDatasetOptions& options, int threads,
-                     int begin, int end, DatasetWriter& writer, SimulateDatasetSummary& summary) {
+                     int begin, int end, DatasetWriter& writer, SimulateDatasetSummary& summary,
+                     std::vector<ForceTable>& forces) {
   const int nb = int(bodies.size()), total = end - begin;
   const int chunk = options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads);
   const auto with_floor = [&](int j) { return options.noise_floor && bodies[std::size_t(j % nb)].role == "original"; };
@@ -169,6 +181,7 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
       if (with_floor(j)) jobs.back().reread_seeds = {floor_seed(options.seed, name)};
     }
     auto floors = std::make_shared<std::vector<std::vector<PressureSequence>>>();
+    std::vector<ForceTable> chunk_forces;
     auto seqs = std::make_shared<std::vector<PressureSequence>>(simulate_many(
         jobs, options.sim, threads,
         [&](const Progress& p) {
@@ -176,7 +189,8 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
             options.progress(
                 progress_count("simulate", done + int(p.done) * (j1 - j0) / int(p.total), total, "sequences"));
         },
-        floors.get()));
+        floors.get(), options.forces_dir.empty() ? nullptr : &chunk_forces));
+    for (ForceTable& f : chunk_forces) forces.push_back(std::move(f));
     if (writing.valid()) writing.get();  // the previous chunk is written (or its error thrown)
     // Written (compressed) on one thread while the next chunk is simulated, in
     // sequence order: the same bytes for any thread count.
@@ -209,6 +223,13 @@ std::string clips_digest(const std::vector<ClipSource>& clips) {
       const MotionOptions& m = c.motion;
       j["bvh_crc32"] = crc32(read_text_file(c.path));
       j["read"] = {units_name(m.units), m.metres_per_unit, m.up == UpAxis::z ? "z" : "y", m.keep_tpose};
+      if (!m.static_markers.empty()) j["static_crc32"] = crc32(read_text_file(m.static_markers));
+      if (!m.marker_map.empty()) {  // a shipped map's name, or a map file's bytes
+        const auto shipped = marker_map_names();
+        j["marker_map"] = std::find(shipped.begin(), shipped.end(), m.marker_map) != shipped.end()
+                              ? nlohmann::ordered_json(m.marker_map)
+                              : nlohmann::ordered_json(crc32(read_text_file(m.marker_map)));
+      }
     }
     all.push_back(std::move(j));
   }
@@ -260,9 +281,22 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
   info.compression = options.compression;
   info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
   const auto [begin, end] = shard_jobs(int(metas.size()), clips, options, out_path, info.config_json);
+  std::vector<std::string> force_files;
+  if (!options.forces_dir.empty()) {
+    if (options.forces_format != "mot" && options.forces_format != "csv")
+      throw Error(field_text("forces_format") + ": expected mot or csv, found " + escaped(options.forces_format));
+    for (int j = begin; j < end; ++j) force_files.push_back(metas[std::size_t(j)].name + "." + options.forces_format);
+    check_outputs_in_folder(options.forces_dir, force_files, options.force);
+  }
   DatasetWriter writer(out_path, info, bodies, options.force);
-  simulate_chunks(motions, places, bodies, built, metas, options, threads, begin, end, writer, summary);
+  std::vector<ForceTable> forces;
+  simulate_chunks(motions, places, bodies, built, metas, options, threads, begin, end, writer, summary, forces);
   writer.commit();
+  if (!force_files.empty()) {
+    make_folder(options.forces_dir);
+    for (std::size_t k = 0; k < force_files.size(); ++k)
+      write_force_table(forces[k], (std::filesystem::path(options.forces_dir) / force_files[k]).string(), options.force);
+  }
   summary.sequences = end - begin;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

@@ -23,11 +23,11 @@ PhysicsBenchOptions::PhysicsBenchOptions() {
 
 std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir) {
   const CsvTable t = read_csv(csv);
-  const std::string columns = "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map]";
+  const std::string columns = "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage]";
   const int c_trial = t.required("trial", columns), c_markers = t.required("markers", columns),
             c_plates = t.required("plates", columns), c_sex = t.required("sex", columns),
             c_height = t.required("height_cm", columns), c_weight = t.required("weight_kg", columns),
-            c_static = t.column("static"), c_map = t.column("marker_map");
+            c_static = t.column("static"), c_map = t.column("marker_map"), c_cover = t.column("coverage");
   const fs::path base = data_dir.empty() ? fs::path(csv).parent_path() : fs::path(data_dir);
   auto path = [&](const std::string& f) {
     return f.empty() || fs::path(f).is_absolute() ? f : (base / f).lexically_normal().string();
@@ -42,6 +42,9 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
     g.plates = path(get(c_plates));
     g.static_markers = path(get(c_static));
     g.marker_map = get(c_map);
+    if (!get(c_cover).empty()) g.coverage = get(c_cover);
+    if (g.coverage != "all" && g.coverage != "some" && g.coverage != "auto")
+      throw Error::at(csv, row.line, "coverage all, some or auto", escaped(g.coverage));
     g.body = parse_body_fields(csv, row.line, g.name, get(c_sex), get(c_height), get(c_weight));
     g.body.role = "original";
     for (const std::string* f : {&g.markers, &g.plates, &g.static_markers})
@@ -67,7 +70,8 @@ double segment_distance(const V2& p, const V2& a, const V2& b) {
 
 // The plates per foot at their own rate: vertical force (N) and the force
 // times the CoP along the foot (N), each plate's force given to the foot
-// nearest its CoP (none beyond assign_m).
+// nearest its CoP, the foot's height above the floor counted as distance
+// (none beyond assign_m).
 struct PlateFeet {
   std::array<std::vector<double>, 2> force_n, force_u;
   std::vector<double> total_n;
@@ -91,8 +95,11 @@ PlateFeet plate_feet(const ForcePlates& fp, const Motion& lab, int up, const Phy
       const V2 cop = horizontal(plate.cop_m[k]);
       double best = o.assign_m;
       int foot = -1;
+      // The nearest foot on the ground: a foot's height above the floor
+      // counts as distance (a swing foot passing over the stance foot's CoP).
       for (int s = 0; s < 2; ++s) {
-        const double d = segment_distance(cop, ends[s][0].head<2>(), ends[s][1].head<2>());
+        const double height = std::max(0.0, std::min(ends[s][0].z(), ends[s][1].z()));
+        const double d = segment_distance(cop, ends[s][0].head<2>(), ends[s][1].head<2>()) + height;
         if (d < best) best = d, foot = s;
       }
       if (foot < 0) continue;
@@ -154,6 +161,26 @@ ForceSource model_source(const ForceTable& table, double bw, bool naive, const P
   return s;
 }
 
+// The frames the figures are over (GaitTrial::coverage): all of them when
+// the plates see every step; else those where every foot in contact, by
+// the plates or the simulator, is on a plate.
+void choose_compared_frames(GaitTrialResult& r, const std::string& coverage, double contact_bw) {
+  const std::size_t T = r.time_s.size();
+  int loaded = 0, unseen = 0;
+  std::vector<bool> every_foot_seen(T, true);
+  for (std::size_t t = 0; t < T; ++t)
+    for (int f = 0; f < 2; ++f) {
+      const bool sim = r.simulated.foot_bw[t][std::size_t(f)] > contact_bw;
+      const bool plate = r.plates.foot_bw[t][std::size_t(f)] > contact_bw;
+      loaded += sim;
+      unseen += sim && !plate;
+      if (sim && !plate) every_foot_seen[t] = false;
+    }
+  const bool some = coverage == "some" || (coverage == "auto" && unseen > loaded / 10);
+  r.coverage = some ? "some" : "all";
+  r.compared = some ? every_foot_seen : std::vector<bool>(T, true);
+}
+
 }  // namespace
 
 GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions& o) {
@@ -187,9 +214,11 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   detail::CompareOptions co;
   co.flight_bw = o.flight_bw;
   co.contact_bw = o.contact_n / bw;
-  detail::compare_with_plates(r.simulated, r.plates, r.time_s, co);
-  detail::compare_with_plates(r.naive, r.plates, r.time_s, co);
+  choose_compared_frames(r, trial.coverage, co.contact_bw);
+  detail::compare_with_plates(r.simulated, r.plates, r.time_s, r.compared, co);
+  detail::compare_with_plates(r.naive, r.plates, r.time_s, r.compared, co);
   for (std::size_t t = 0; t < r.time_s.size(); ++t) {
+    if (!r.compared[t]) continue;
     r.flight_frames += r.plates.total_bw[t] < o.flight_bw;
     r.single_stance_frames += (r.plates.foot_bw[t][0] > co.contact_bw) != (r.plates.foot_bw[t][1] > co.contact_bw);
   }

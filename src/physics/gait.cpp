@@ -28,6 +28,7 @@ std::vector<Contact> find_contacts(const std::vector<double>& t, const std::vect
     c.foot = foot;
     c.start_s = i > 0 ? crossing(i) : t[i];
     c.end_s = j < n ? crossing(j) : t[j - 1];
+    c.whole = i > 0 && j < n;
     std::size_t at_peak = i;
     for (std::size_t k = i; k < j; ++k) {
       if (f[k] > c.peak_n) c.peak_n = f[k], at_peak = k;
@@ -87,12 +88,12 @@ double overlap(const Contact& a, const Contact& b) {
 }  // namespace
 
 void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::vector<double>& time_s,
-                         const CompareOptions& o) {
+                         const std::vector<bool>& compared, const CompareOptions& o) {
   // Total force over the frames both have.
   double se = 0;
   int n = 0, flight = 0, flight_hit = 0;
   for (std::size_t t = 0; t < time_s.size(); ++t) {
-    if (!std::isfinite(plates.total_bw[t]) || !std::isfinite(s.total_bw[t])) continue;
+    if (!compared[t] || !std::isfinite(plates.total_bw[t]) || !std::isfinite(s.total_bw[t])) continue;
     const double d = s.total_bw[t] - plates.total_bw[t];
     se += d * d, ++n;
     if (plates.total_bw[t] < o.flight_bw) {
@@ -106,6 +107,7 @@ void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::v
   std::vector<double> peak, stance, rate;
   s.matched = 0;
   for (const Contact& p : plates.contacts) {
+    if (!p.whole) continue;
     const Contact* best = nullptr;
     for (const Contact& c : s.contacts)
       if (c.foot == p.foot && overlap(c, p) > 0 && (!best || overlap(c, p) > overlap(*best, p))) best = &c;
@@ -124,7 +126,7 @@ void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::v
   std::vector<double> stride;
   for (std::size_t a = 0; a < plates.contacts.size(); ++a)
     for (std::size_t b = a + 1; b < plates.contacts.size(); ++b) {
-      if (plates.contacts[b].foot != plates.contacts[a].foot) continue;
+      if (plates.contacts[b].foot != plates.contacts[a].foot || !plates.contacts[a].whole) continue;
       const double t0 = plates.contacts[a].start_s, t1 = plates.contacts[b].start_s;
       double ip = 0, is = 0;
       bool ok = true;
@@ -132,7 +134,7 @@ void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::v
         if (time_s[t] < t0 || time_s[t + 1] > t1) continue;
         const double dt = time_s[t + 1] - time_s[t];
         const double pp = plates.total_bw[t] + plates.total_bw[t + 1], ss = s.total_bw[t] + s.total_bw[t + 1];
-        ok = ok && std::isfinite(pp) && std::isfinite(ss);
+        ok = ok && std::isfinite(pp) && std::isfinite(ss) && compared[t] && compared[t + 1];
         ip += 0.5 * pp * dt, is += 0.5 * ss * dt;
       }
       if (ok && ip > 0) stride.push_back(100 * std::abs(is - ip) / ip);
@@ -143,6 +145,7 @@ void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::v
   double ce = 0;
   int cn = 0;
   for (std::size_t t = 0; t < time_s.size(); ++t) {
+    if (!compared[t]) continue;
     const auto& pf = plates.foot_bw[t];
     const bool left = pf[0] > o.contact_bw, right = pf[1] > o.contact_bw;
     if (left == right) continue;

@@ -19,8 +19,10 @@ struct CompareOptions {
   double flight_bw = 0.05;   // flight: the total force below this
   double contact_bw = 0.03;  // single stance: one foot above this, the other not
 };
-// Fills s's figures against `plates` (PhysicsBenchOptions, ForceSource).
+// Fills s's figures against `plates` (PhysicsBenchOptions, ForceSource)
+// over the frames `compared` marks ([T]): a stride counts when all its
+// frames are compared, a contact when the plates saw it whole.
 void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::vector<double>& time_s,
-                         const CompareOptions& options);
+                         const std::vector<bool>& compared, const CompareOptions& options);
 
 }  // namespace ptnet::detail

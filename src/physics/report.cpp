@@ -1,6 +1,7 @@
 // The physics bench's outputs: results.json (every figure), index.html (a
 // table and the force curves of each trial: plates, simulator, naive) and
 // each trial's simulated forces as an OpenSim storage file.
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <iomanip>
@@ -34,7 +35,8 @@ nlohmann::ordered_json source_json(const ForceSource& s) {
                         {"stance_ms", 1000 * (c.end_s - c.start_s)},
                         {"peak_n", c.peak_n},
                         {"impulse_ns", c.impulse_ns},
-                        {"loading_rate_n_s", number(c.loading_rate_n_s)}});
+                        {"loading_rate_n_s", number(c.loading_rate_n_s)},
+                        {"whole", c.whole}});
   j["contacts"] = contacts;
   return j;
 }
@@ -103,7 +105,7 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
        "<code>TRIAL_sim.mot</code> (OpenSim storage); every frame of the three: <code>TRIAL_frames.csv</code>.</p>\n"
        "<table id=\"physics\"><tr><th>trial</th><th>source</th><th>force RMSE (BW)</th><th>peak error (%)</th>"
        "<th>stance error (ms)</th><th>loading rate error (%)</th><th>stride impulse error (%)</th>"
-       "<th>flight frames found</th><th>CoP along the foot, RMS (foot lengths)</th><th>contacts matched</th></tr>\n";
+       "<th>flight frames found</th><th>CoP along the foot, RMS (foot lengths)</th><th>whole contacts matched</th></tr>\n";
   for (const auto& r : results) {
     write_force_table(r.table, path(r.trial.name + "_sim.mot"), force);
     write_text_file(path(r.trial.name + "_frames.csv"), series_csv(r), force);
@@ -117,12 +119,15 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
     j["fps"] = r.fps;
     j["frames"] = r.time_s.size();
     j["treadmill_belt_mps"] = r.belt_mps;
+    j["coverage"] = r.coverage;
+    j["compared_frames"] = std::count(r.compared.begin(), r.compared.end(), true);
     j["plate_flight_frames"] = r.flight_frames;
     j["single_stance_frames"] = r.single_stance_frames;
     j["plates"] = {{"contacts", source_json(r.plates)["contacts"]}};
     j["simulated"] = source_json(r.simulated);
     j["naive"] = source_json(r.naive);
     all.push_back(j);
+    const long whole = std::count_if(r.plates.contacts.begin(), r.plates.contacts.end(), [](const Contact& c) { return c.whole; });
     for (const ForceSource* s : {&r.simulated, &r.naive}) {
       const std::string flight = std::isfinite(s->flight_recall)
                                      ? fixed_text(100 * s->flight_recall, 0) + " % of " + std::to_string(r.flight_frames)
@@ -132,14 +137,15 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
         << cell(s->stance_error_ms, 0) << "</td><td class=\"num\">" << cell(s->loading_rate_error_pct, 0)
         << "</td><td class=\"num\">" << cell(s->stride_impulse_error_pct, 1) << "</td><td class=\"num\">" << flight
         << "</td><td class=\"num\">" << cell(s->cop_rms, 3) << "</td><td class=\"num\">" << s->matched << " of "
-        << r.plates.contacts.size() << "</td></tr>\n";
+        << whole << "</td></tr>\n";
     }
   }
   b << "</table>\n";
   for (const auto& r : results)
     b << "<h2>" << html_escape(r.trial.name) << "</h2>\n<p>" << html_escape(sex_name(r.trial.body.sex)) << ", "
       << fixed_text(r.trial.body.height_cm, 1) << " cm, " << fixed_text(r.trial.body.weight_kg, 1) << " kg; "
-      << fixed_text(r.fps, 0) << " frames/s"
+      << fixed_text(r.fps, 0) << " frames/s; plates see " << (r.coverage == "all" ? "every step" : "some steps")
+      << ": " << std::count(r.compared.begin(), r.compared.end(), true) << " of " << r.time_s.size() << " frames compared"
       << (r.belt_mps > 0 ? "; treadmill belt " + fixed_text(r.belt_mps, 2) + " m/s removed" : std::string()) << ".</p>\n"
       << "<img src=\"" << html_escape(r.trial.name) << "_total.svg\" alt=\"total vertical force\">\n"
       << "<img src=\"" << html_escape(r.trial.name) << "_feet.svg\" alt=\"vertical force per foot\">\n";

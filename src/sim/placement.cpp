@@ -78,7 +78,7 @@ std::vector<double> floor_track(const Motion& motion, const Body& body, double w
 std::array<double, 2> foot_pitch_offsets(const Motion& motion) {
   // Canonical rest pitch of ankle -> toe joint below the horizontal: the
   // ankle 0.039 H and the toe joint 0.009 H above the ground, 0.079 H apart.
-  const double rest = std::atan2(0.039 - 0.009, 0.079);
+  const double rest = rest_foot_pitch();
   const int T = motion.size();
   const double fps = motion.fps > 0 ? motion.fps : 30;
   std::array<double, 2> out{0, 0};
@@ -101,23 +101,77 @@ std::array<double, 2> foot_pitch_offsets(const Motion& motion) {
   return out;
 }
 
+double frozen_pelvis_fraction(const Motion& motion) {
+  constexpr double kStill = 1e-6;   // m a frame: a height the capture holds exactly
+  constexpr double kStepping = 0.3;  // m/s: a foot this fast is stepping
+  const int T = motion.size();
+  if (T < 2 || !(motion.fps > 0)) return 0;
+  const int min_run = std::max(2, int(std::lround(0.5 * motion.fps)));
+  int frozen = 0;
+  for (int t = 0; t < T;) {
+    int end = t + 1;
+    bool steps = false;
+    while (end < T && std::abs(motion.frames[std::size_t(end)][kPelvis].z() - motion.frames[std::size_t(end - 1)][kPelvis].z()) < kStill) {
+      for (int a : {kLeftAnkle, kRightAnkle})
+        steps = steps || (motion.frames[std::size_t(end)][a] - motion.frames[std::size_t(end - 1)][a]).head<2>().norm() *
+                             motion.fps > kStepping;
+      ++end;
+    }
+    if (end - t >= min_run && steps) frozen += end - t;
+    t = end;
+  }
+  return double(frozen) / T;
+}
+
+double patch_lowest_z(const SoleSurface& sole, const SolePatch& p) {
+  double lowest = 1e300;
+  for (int i = 0; i < sole.nu; ++i) {
+    const double u = double(i) / (sole.nu - 1);
+    if (u < p.u_begin || u > p.u_end) continue;
+    const double along = p.origin.z() + p.forward.z() * ((u - p.u_origin) * sole.length_m);
+    for (int j = 0; j < sole.nv; ++j) {
+      const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
+      if (!(h < SoleSurface::kOutside)) continue;
+      const double v = sole.v_min + (sole.v_max - sole.v_min) * j / (sole.nv - 1);
+      lowest = std::min(lowest, along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h);
+    }
+  }
+  return lowest;
+}
+
+std::array<double, 2> foot_lifts(const Motion& motion, const Body& body, const std::vector<double>& floor) {
+  constexpr double kMaxLift = 0.03;  // m: a larger offset is a foot held up (or on a step), not a capture error
+  constexpr double kMinLift = 0.005;  // m
+  constexpr double kStanceShare = 0.2;  // every foot that stands stands longer than this share of the motion
+  const int T = motion.size();
+  if (T < 10) return {0, 0};
+  std::array<std::vector<double>, 2> z;
+  for (int t = 0; t < T; ++t) {
+    const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
+    const double f = floor.empty() ? 0.0 : floor[std::size_t(t)];
+    for (int s = 0; s < 2; ++s) {
+      const auto& patches = s ? pb.right_foot : pb.left_foot;
+      z[std::size_t(s)].push_back(std::min(patch_lowest_z(body.sole(), patches[0]), patch_lowest_z(body.sole(), patches[1])) - f);
+    }
+  }
+  std::array<double, 2> lift{0, 0};
+  for (int s = 0; s < 2; ++s) {
+    auto& v = z[std::size_t(s)];
+    const std::size_t k = std::size_t(kStanceShare * double(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+    // Only a foot that floats is brought down (one below the floor already
+    // presses into the foundation), and only when it floats by more than the
+    // sole's own relief (a few millimetres a canonical foot stands above).
+    if (v[k] > kMinLift && v[k] <= kMaxLift) lift[std::size_t(s)] = v[k];
+  }
+  return lift;
+}
+
 Motion pitch_corrected(const Motion& motion, const std::array<double, 2>& pitch) {
   Motion out = motion;
   if (std::abs(pitch[0]) > 0.03 || std::abs(pitch[1]) > 0.03)  // ~2 degrees
-    for (Pose& p : out.frames) correct_foot_pitch(p, pitch);
+    for (Pose& p : out.frames) pitch_feet(p, pitch);
   return out;
-}
-
-void correct_foot_pitch(Pose& pose, const std::array<double, 2>& offsets) {
-  for (int s = 0; s < 2; ++s) {
-    if (offsets[std::size_t(s)] == 0) continue;
-    const int a = s ? kRightAnkle : kLeftAnkle, b = a + 1;
-    const Eigen::Vector3d d = pose[b] - pose[a];
-    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ().cross(d);
-    if (axis.norm() < 1e-9) continue;
-    // Rotating about z x d by +angle lowers the toe joint (pitches the foot down).
-    pose[b] = pose[a] + Eigen::AngleAxisd(offsets[std::size_t(s)], axis.normalized()) * d;
-  }
 }
 
 }  // namespace ptnet::detail
@@ -208,24 +262,39 @@ std::vector<Eigen::Vector2d> followed_centres(const Motion& motion, const SimOpt
   return centres;
 }
 
+}  // namespace
+
+const Body& detail::reference_body() {
+  static const Body body([] {
+    BodySpec spec;
+    spec.id = "floor-reference";
+    spec.sex = Sex::male;
+    spec.height_cm = kFloorReferenceHeightCm;
+    spec.weight_kg = 65;
+    return spec;
+  }());
+  return body;
+}
+
+namespace {
+
 // The feet's pitch and the floor of the copy at a reference height (on a
 // reference body), the floor scaled back: a retargeted copy is this one
 // scaled by the height ratio, and so is its floor, whatever the body's
 // girth; its angles are this copy's.
 void place_feet_and_floor(const Motion& motion, const SimOptions& options, MotionPlacement& out) {
   const Motion reference = retarget(motion, kFloorReferenceHeightCm);
+  const double ratio = retarget_scale(motion, kFloorReferenceHeightCm);
   out.foot_pitch = detail::foot_pitch_offsets(reference);
+  std::vector<double> floor;  // the reference copy's
   if (options.floor_window_s > 0) {
-    BodySpec spec;
-    spec.id = "floor-reference";
-    spec.sex = Sex::male;
-    spec.height_cm = kFloorReferenceHeightCm;
-    spec.weight_kg = 65;
-    const double ratio = retarget_scale(motion, kFloorReferenceHeightCm);
-    out.floor = detail::floor_track(detail::pitch_corrected(reference, out.foot_pitch), Body(spec),
-                                    options.floor_window_s, 0.25);
+    floor = detail::floor_track(detail::pitch_corrected(reference, out.foot_pitch), detail::reference_body(),
+                                options.floor_window_s, 0.25);
+    out.floor = floor;
     for (double& z : out.floor) z /= ratio;
   }
+  out.foot_lift = detail::foot_lifts(detail::pitch_corrected(reference, out.foot_pitch), detail::reference_body(), floor);
+  for (double& z : out.foot_lift) z /= ratio;
 }
 
 }  // namespace
@@ -251,6 +320,7 @@ MotionPlacement MotionPlacement::scaled(double ratio) const {
   MotionPlacement out = *this;
   for (Eigen::Vector2d& c : out.centre) c = anchor + ratio * (c - anchor);
   for (double& z : out.floor) z *= ratio;
+  for (double& z : out.foot_lift) z *= ratio;
   return out;
 }
 

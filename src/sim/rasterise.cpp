@@ -374,6 +374,35 @@ void Rasteriser::rasterise(const Body& body, const PosedBody& posed, bool trace)
   const auto& segs = body.segments();
   for (int s = 0; s < kSegmentCount; ++s)
     if (segs[s].touches_ground) capsule(posed.a[s], posed.b[s], segs[s].radius_a_m, segs[s].radius_b_m);
+  keep_lowest_off_mat();
+}
+
+// Off the mat as on it, a position keeps its lowest surface (the first
+// recorded of equal heights): a capsule's overlapping spheres, or two sole
+// patches along their seam, record one position several times.
+void Rasteriser::keep_lowest_off_mat() {
+  if (d_.off.size() < 2) return;
+  auto& idx = off_order_;
+  idx.resize(d_.off.size());
+  for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = k;
+  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+    const OffSample &p = d_.off[a], &q = d_.off[b];
+    return p.i != q.i ? p.i < q.i : p.j != q.j ? p.j < q.j : p.z < q.z;
+  });
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < idx.size(); ++k) {
+    const OffSample& o = d_.off[idx[k]];
+    if (n > 0 && o.i == off_kept_[n - 1].i && o.j == off_kept_[n - 1].j) continue;
+    if (off_kept_.size() <= n) off_kept_.resize(n + 1), off_kept_owner_.resize(n + 1), off_kept_u_.resize(n + 1);
+    off_kept_[n] = o;
+    if (trace_) off_kept_owner_[n] = d_.off_owner[idx[k]], off_kept_u_[n] = d_.off_u[idx[k]];
+    ++n;
+  }
+  d_.off.assign(off_kept_.begin(), off_kept_.begin() + std::ptrdiff_t(n));
+  if (trace_) {
+    d_.off_owner.assign(off_kept_owner_.begin(), off_kept_owner_.begin() + std::ptrdiff_t(n));
+    d_.off_u.assign(off_kept_u_.begin(), off_kept_u_.begin() + std::ptrdiff_t(n));
+  }
 }
 
 void Rasteriser::clear() {

@@ -23,11 +23,22 @@ namespace ptnet::detail {
 // pitch minus the median of the bone's pitch over planted frames
 // (ankle slower than 0.05 m/s), rad, bounded to +/- 0.5; 0 with < 5 planted frames.
 std::array<double, 2> foot_pitch_offsets(const Motion& motion);
-// Rotates each toe joint about its ankle (down by the offset).
-void correct_foot_pitch(Pose& pose, const std::array<double, 2>& offsets);
 // The motion with its feet pitched by `offsets` (MotionPlacement::foot_pitch)
 // when a foot's is more than ~2 degrees; unchanged otherwise (canonical motions).
 Motion pitch_corrected(const Motion& motion, const std::array<double, 2>& offsets);
+
+// The body (male, kFloorReferenceHeightCm, 65 kg) a motion's floor, feet
+// and dynamics are found on.
+const Body& reference_body();
+
+// MotionDynamics::frozen_pelvis of a motion.
+double frozen_pelvis_fraction(const Motion& motion);
+
+// The lowest point (z, m) of a posed sole patch's surface.
+double patch_lowest_z(const SoleSurface& sole, const SolePatch& patch);
+// MotionPlacement::foot_lift of a motion (pitch corrected) on `body` over
+// its floor ([T], or empty: z = 0).
+std::array<double, 2> foot_lifts(const Motion& motion, const Body& body, const std::vector<double>& floor);
 
 // The floor under a motion, frame by frame: the lower envelope over
 // `window_s` (centred) of the sole planes of the feet that barely move
@@ -75,7 +86,7 @@ struct SampleGrid {
 // Which surface a sample's height belongs to (with a trace).
 enum Owner : unsigned char { kNone = 0, kLeftSole = 1, kRightSole = 2, kOther = 3 };
 
-// A sample off the mat: each surface's record there is a sample of its own.
+// A sample off the mat, its lowest surface (Rasteriser keeps one per position).
 struct OffSample {
   float z;   // height (m)
   int i, j;  // sample indices, outside [0, R S) x [0, C S)
@@ -93,7 +104,7 @@ struct DepthMap {
   int row0, row1;                 // the sample rows written (row0 > row1: none)
   std::vector<int> span0, span1;  // [R S] the columns [span0, span1] written in each sample row
   float zlo;                      // lowest recorded height, on or off the mat (m; +inf: none)
-  std::vector<OffSample> off;     // the records off the mat
+  std::vector<OffSample> off;     // the samples off the mat, one per position
   // With a trace (Rasteriser::rasterise(..., true)): the surface of each
   // sample (Owner) and its sole coordinate u (0 heel .. 1 toe tip).
   std::vector<unsigned char> owner;  // [R S, C S]
@@ -159,9 +170,15 @@ class Rasteriser {
   }
   // Empties the map (only the rows and columns written).
   void clear();
+  // Leaves one record per position off the mat, the lowest.
+  void keep_lowest_off_mat();
 
   float reach_;
   bool trace_ = false;
+  std::vector<std::size_t> off_order_;  // keep_lowest_off_mat's scratch
+  std::vector<OffSample> off_kept_;
+  std::vector<unsigned char> off_kept_owner_;
+  std::vector<float> off_kept_u_;
   DepthMap d_;
 };
 

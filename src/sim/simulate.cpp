@@ -96,6 +96,9 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
       const Eigen::Vector2d d = pose[j].head<2>() - c;
       local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor[std::size_t(t)]);
     }
+    for (int s = 0; s < 2; ++s)
+      if (place.foot_lift[std::size_t(s)] != 0)
+        for (int j : {s ? kRightAnkle : kLeftAnkle, s ? kRightToe : kLeftToe}) local[j].z() -= place.foot_lift[std::size_t(s)];
     float* frame = reads[0].frame(t);
     raster.rasterise(body, pose_body(body, local), trace != nullptr);
     const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
@@ -124,9 +127,9 @@ PressureSequence simulate(const Motion& input, const Body& body, const SimOption
 
 std::vector<PressureSequence> simulate_reads(const Motion& motion, const Body& body, const SimOptions& options,
                                              const MotionPlacement& placement,
-                                             const std::vector<std::uint64_t>& seeds) {
+                                             const std::vector<std::uint64_t>& seeds, std::vector<FrameTrace>* trace) {
   if (seeds.empty()) return {};
-  return simulate_seeds(motion, body, options, placement, nullptr, seeds);
+  return simulate_seeds(motion, body, options, placement, trace, seeds);
 }
 
 std::uint64_t sequence_seed(std::uint64_t seed, const std::string& name) {

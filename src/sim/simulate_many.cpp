@@ -13,12 +13,14 @@ namespace ptnet {
 std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
                                             const SimOptions& options, int threads,
                                             const ProgressFn& progress,
-                                            std::vector<std::vector<PressureSequence>>* rereads) {
+                                            std::vector<std::vector<PressureSequence>>* rereads,
+                                            std::vector<ForceTable>* forces) {
   for (const auto& j : jobs)
     if (!j.motion || !j.body) throw Error("simulate_many: a job has no motion or body");
   const int n = int(jobs.size());
   std::vector<PressureSequence> out(static_cast<std::size_t>(n));
   if (rereads) rereads->assign(static_cast<std::size_t>(n), {});
+  if (forces) forces->assign(static_cast<std::size_t>(n), {});
   std::mutex mutex;  // serialises the progress callback
   int done = 0;
   parallel_for(n, threads, [&](int i) {
@@ -31,7 +33,9 @@ std::vector<PressureSequence> simulate_many(const std::vector<SimJob>& jobs,
     std::optional<MotionPlacement> own;
     if (!job.placement) own = place_motion(*job.motion, o);
     const MotionPlacement& place = job.placement ? *job.placement : *own;
-    std::vector<PressureSequence> reads = simulate_reads(*job.motion, *job.body, o, place, seeds);
+    std::vector<FrameTrace> trace;
+    std::vector<PressureSequence> reads = simulate_reads(*job.motion, *job.body, o, place, seeds, forces ? &trace : nullptr);
+    if (forces) (*forces)[std::size_t(i)] = force_table(trace, *job.motion, *job.body);
     out[std::size_t(i)] = std::move(reads[0]);
     if (rereads)
       (*rereads)[std::size_t(i)].assign(std::make_move_iterator(reads.begin() + 1),

@@ -38,25 +38,19 @@ struct Grid {
   }
 };
 
-// The lowest surface per sample position (and, with OffMat::each_record,
-// every record off the mat).
+// The lowest surface per sample position, on and off the mat.
 class Depth {
  public:
-  Depth(const Grid& grid, float reach, OffMat off_mat)
-      : grid_(grid), reach_(reach), off_mat_(off_mat) {}
+  Depth(const Grid& grid, float reach) : grid_(grid), reach_(reach) {}
 
   void record(int i, int j, float z, int owner, float u) {
     if (!(z < reach_)) return;
-    if (!grid_.on_mat(i, j) && off_mat_ == OffMat::each_record) {
-      records_.push_back({i, j, z, owner, u});
-      return;
-    }
     const auto key = std::make_pair(i, j);
     const auto it = lowest_.find(key);
     if (it == lowest_.end() || z < it->second.z) lowest_[key] = {i, j, z, owner, u};
   }
   std::vector<RefSample> samples() const {
-    std::vector<RefSample> out = records_;
+    std::vector<RefSample> out;
     for (const auto& [key, s] : lowest_) out.push_back(s);
     return out;
   }
@@ -64,9 +58,7 @@ class Depth {
  private:
   const Grid& grid_;
   float reach_;
-  OffMat off_mat_;
   std::map<std::pair<int, int>, RefSample> lowest_;
-  std::vector<RefSample> records_;
 };
 
 void sole_patch(const Grid& g, const SoleSurface& sole, const SolePatch& p, int owner, float reach,
@@ -138,10 +130,10 @@ float lowest(const std::vector<RefSample>& samples) {
 }  // namespace
 
 std::vector<RefSample> reference_depth(const Body& body, const PosedBody& posed,
-                                       const SimOptions& options, OffMat off_mat) {
+                                       const SimOptions& options) {
   const Grid g(options);
   const float reach = float(options.compliance_m + options.max_sink_m);
-  Depth depth(g, reach, off_mat);
+  Depth depth(g, reach);
   for (const SolePatch& p : posed.left_foot) sole_patch(g, body.sole(), p, 1, reach, depth);
   for (const SolePatch& p : posed.right_foot) sole_patch(g, body.sole(), p, 2, reach, depth);
   const auto& segs = body.segments();

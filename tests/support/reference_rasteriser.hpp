@@ -23,12 +23,7 @@
 //    within its radius is its lower surface, cz - sqrt(r^2 - d^2);
 //  - heights at or above the reach are not recorded; a sample holds the
 //    lowest (on ties the first: left sole, right sole, capsules in segment
-//    order);
-//  - off the mat, the simulator keeps every record as a sample of its own
-//    (OffMat::each_record): a position under two surfaces (a capsule's
-//    overlapping spheres, the two patches of a sole along their seam)
-//    counts once per surface. OffMat::lowest keeps the lowest per position,
-//    as on the mat.
+//    order), off the mat as on it.
 #pragma once
 
 #include <Eigen/Core>
@@ -49,13 +44,10 @@ struct RefSample {
   float u = 0;
 };
 
-enum class OffMat { each_record, lowest };
-
 // The samples of `posed` (mat coordinates, m) under options.mat,
 // options.subsamples, options.compliance_m and options.max_sink_m.
 std::vector<RefSample> reference_depth(const Body& body, const PosedBody& posed,
-                                       const SimOptions& options,
-                                       OffMat off_mat = OffMat::each_record);
+                                       const SimOptions& options);
 
 // The sink level s (m): sum over samples of max(0, s - z) = load_n / (k
 // ds^2), k = options.stiffness_kpa_per_mm (in Pa per m), at most
