@@ -2,9 +2,9 @@
 // transferred pressure help a classifier recognise people of bodies it
 // never saw? Thin glue over ptnet/har_bench.hpp and ptnet/transfer.hpp.
 //
-//   ptnet har-bench --mocap ../shared/mocap-corpus --write-training-set hb_train.h5
+//   ptnet har-bench --mocap corpus --write-training-set hb_train.h5
 //   ptnet train --data hb_train.h5 --out hb_model --preset fast
-//   ptnet har-bench --mocap ../shared/mocap-corpus --model hb_model --model-data hb_train.h5 --out hb
+//   ptnet har-bench --mocap corpus --model hb_model --model-data hb_train.h5 --out hb
 #include <filesystem>
 #include <iostream>
 #include <optional>

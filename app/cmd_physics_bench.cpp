@@ -1,6 +1,6 @@
 // ptnet physics-bench: the simulator against real force plates.
 //
-//   ptnet physics-bench --trials bench/real-gait.csv --data ../shared/real-gait --out physics
+//   ptnet physics-bench --trials bench/real-gait.csv --data real-gait --out physics
 //
 // Each trial of the trials CSV (trial, markers, plates, sex, height_cm,
 // weight_kg[, static, marker_map]; docs/physics.md) is simulated on a body

@@ -1,6 +1,6 @@
 // ptnet simulate: motion clips x bodies -> pressure-mat dataset (HDF5).
 //
-//   ptnet simulate --motions ../shared/mocap --clips ../shared/mocap/clips.csv
+//   ptnet simulate --motions mocap --clips mocap/clips.csv
 //                  --bodies bodies.csv --out mocap.h5
 //   ptnet simulate --embedded --performers 2 --takes 1 --seconds 4 --bodies bodies.csv --out demo.h5
 //

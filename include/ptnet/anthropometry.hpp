@@ -3,7 +3,7 @@
 //   const auto& p = ptnet::anthropometry::kDrillisContini;
 //   double thigh_m = p.thigh * height_m;
 //
-// Sources (see ../shared/anthropometry.md):
+// Sources (see docs/anthropometry.md):
 //  - segment lengths as fractions of standing height H: Drillis & Contini
 //    (1966), as reproduced in Winter, Biomechanics and Motor Control of Human
 //    Movement, Fig. 4.1;
@@ -29,7 +29,7 @@ inline constexpr LengthFractions kDrillisContini{};
 
 // Where along the foot (fraction of foot length, from the back of the heel)
 // the ankle joint centre and the metatarsophalangeal (toe) joint lie, and the
-// regions of the plantar surface (../shared/anthropometry.md).
+// regions of the plantar surface (docs/anthropometry.md).
 struct FootFractions {
   double ankle = 0.22;        // ankle joint centre above this point
   double mtp = 0.74;          // metatarsal heads / toe joint

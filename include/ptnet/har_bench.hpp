@@ -4,7 +4,7 @@
 //
 //   // 1. the transfer model's training set: the clips' training parts only
 //   ptnet::har::BenchOptions o;
-//   o.mocap = "../shared/mocap-corpus";                  // or empty: procedural clips
+//   o.mocap = "corpus";                  // or empty: procedural clips
 //   ptnet::har::write_bench_training_set("hb_train.h5", o, /*bodies=*/24, /*force=*/false);
 //   //    ... ptnet train --data hb_train.h5 --out hb_model --preset fast
 //   // 2. the benchmark

@@ -2,7 +2,7 @@
 // simulator checked against real force plates.
 //
 //   ptnet::ForcePlates fp = ptnet::read_grf_mot("walk_grf.mot");   // OpenSim plates [N, P]
-//   auto trials = ptnet::read_gait_trials("bench/real-gait.csv", "../shared/real-gait");
+//   auto trials = ptnet::read_gait_trials("bench/real-gait.csv", "real-gait");
 //   ptnet::GaitTrialResult r = ptnet::run_gait_trial(trials[0], {});  // plates vs simulator vs naive
 //   ptnet::write_physics_report({r}, "physics", /*force=*/false);     // results.json + index.html
 //

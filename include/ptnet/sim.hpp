@@ -14,7 +14,7 @@
 //     seqs.push_back(ptnet::simulate(ptnet::retarget(src, h), body_of(h), opt,
 //                                    place.scaled(ptnet::retarget_scale(src, h))));
 //
-// Per frame (../shared/design.md, "Pressure simulation"):
+// Per frame (docs/simulate.md, "Physics"):
 //  1. placement (MotionPlacement below): the whole sequence is centred on the
 //     mat and its walking direction (principal axis of the pelvis path; the
 //     mean facing direction if it barely moves) laid along the mat's long

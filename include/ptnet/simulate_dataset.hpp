@@ -1,7 +1,7 @@
 // ptnet/simulate_dataset.hpp: clips x bodies -> retarget -> simulate -> HDF5
 // dataset, the loop behind `ptnet simulate` and `ptnet demo`.
 //
-//   auto clips = ptnet::clips_from_files({"../shared/mocap"}, "../shared/mocap/clips.csv", {});
+//   auto clips = ptnet::clips_from_files({"mocap"}, "mocap/clips.csv", {});
 //   auto bodies = ptnet::read_bodies_csv("bodies.csv");
 //   ptnet::SimulateDatasetOptions opt;      // 80 x 28 mat, 30 fps, seed 0, all cores
 //   opt.seed = 7;

@@ -2,7 +2,7 @@
 // foot, in normalised coordinates (u along the foot from the heel back, v
 // across in foot widths, medial positive).
 //
-// Regions (../shared/anthropometry.md): heel pad u 0-0.3, midfoot 0.3-0.6
+// Regions (docs/anthropometry.md): heel pad u 0-0.3, midfoot 0.3-0.6
 // (medial arch raised ~1-2 cm, lateral band in contact), metatarsal heads
 // ~0.65-0.75, toes ~0.8-1.0; foot length 0.152 H, width 0.055 H (Drillis &
 // Contini 1966). Heights are millimetres of unloaded soft tissue above the

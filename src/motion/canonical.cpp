@@ -9,7 +9,7 @@
 // L_Foot (a toe joint, below L_Ankle) from Character Creator's L_Foot (the
 // ankle). Spine and chest are chosen on the pelvis -> neck chain by bone
 // length along it (canonical skeleton: spine 0.070 H and chest 0.190 H above
-// the pelvis, of 0.288 H to the neck, ../shared/anthropometry.md), which
+// the pelvis, of 0.288 H to the neck, docs/anthropometry.md), which
 // fits CMU (Spine, Spine1), Mixamo (Spine, Spine2), SMPL (Spine1, Spine3)
 // and Character Creator (Spine01, Spine02) alike.
 #include <array>

@@ -15,8 +15,8 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 using rig::deg;
 
-// Ranges: cadence 1.65-1.95 steps/s and stride ~0.8 H (Winter; ../shared/
-// anthropometry.md), slightly shortened for pacing on a 1.6 m mat.
+// Ranges: cadence 1.65-1.95 steps/s and stride ~0.8 H (Winter;
+// docs/anthropometry.md), slightly shortened for pacing on a 1.6 m mat.
 Style performer_style(int performer, std::uint64_t seed, double height_m) {
   rig::Rng rng(seed, 0x5374796c65ULL, std::uint64_t(performer));
   Style s;

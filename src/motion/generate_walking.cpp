@@ -2,7 +2,7 @@
 // turning at its ends in two 90-degree step turns, so a fixed mat senses
 // every frame.
 //
-// Gait timing (Winter; ../shared/anthropometry.md): a step lasts T = 1 /
+// Gait timing (Winter; docs/anthropometry.md): a step lasts T = 1 /
 // cadence; each foot is in stance 1.2 T (60 % of the 2 T cycle) and swings
 // 0.8 T, so each transition has 0.2 T of double support (10 % of the cycle).
 // A stance starts with the heel (toes up, rolling down about the heel during
