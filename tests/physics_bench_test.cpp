@@ -16,6 +16,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/markers.hpp"
 #include "ptnet/physics.hpp"
 
 namespace fs = std::filesystem;
@@ -169,4 +170,57 @@ TEST(PhysicsBench, OvergroundPlatesAreComparedOnlyWhereTheySeeEveryFoot) {
   const ptnet::GaitTrialResult forced = ptnet::run_gait_trial(t, {});
   EXPECT_GT(forced.simulated.rmse_bw, 0.3);  // the unseen steps counted as the simulator's error
   fs::remove(tmp);
+}
+
+TEST(PhysicsBench, TheSameTrialsInTheCommonMarkerNamesGiveTheSameFigures) {
+  const std::string dir = PTNET_SHARED_GAIT;
+  if (!fs::exists(dir + "/run_s02.trc")) GTEST_SKIP() << "../shared/real-gait not found";
+  // Delaware names -> the common names (RASI, RTH1, RKNE, RCAL, RMT1, ...):
+  // the shipped "common" map is chosen and places the same landmarks.
+  const std::vector<std::pair<std::string, std::string>> names = {
+      {"ASIS", "ASI"}, {"Thigh.Upper", "TH1"}, {"Thigh.Front", "TH2"}, {"Thigh.Rear", "TH3"}, {"Shank.Upper", "SH1"},
+      {"Shank.Front", "SH2"}, {"Shank.Rear", "SH3"}, {"Knee.Lat", "KNE"}, {"Knee.Med", "KNM"}, {"Ankle.Lat", "ANK"},
+      {"Ankle.Med", "MMA"}, {"Heel", "CAL"}, {"Toe.Med", "MT1"}, {"Toe.Lat", "MT5"}, {"Toe.Tip", "HLX"},
+      {"Acromium", "SHO"}, {"Elbow", "ELB"}, {"Wrist.Lat", "WRA"}, {"Wrist.Med", "WRB"}};
+  auto rename = [&](const std::string& n) -> std::string {
+    if (n == "V.Sacral") return "SACR";
+    if (n == "Sternum") return "STRN";
+    if (n == "Top.Head") return "HEAD";
+    for (const auto& [from, to] : names)
+      for (const char* side : {"R.", "L."})
+        if (n == side + from) return std::string(1, side[0]) + to;
+    return n;
+  };
+  const fs::path tmp = fs::temp_directory_path() / ("ptnet_common_" + std::to_string(::getpid()));
+  fs::create_directories(tmp);
+  for (const char* f : {"run_s02.trc", "run_s02_static.trc"}) {
+    std::istringstream in(ptnet::read_text_file(dir + "/" + f));
+    std::ofstream out(tmp / f);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) {
+      if (++n == 4) {  // the marker names
+        std::string renamed, cell;
+        std::istringstream cells(line);
+        for (bool first = true; std::getline(cells, cell, '\t'); first = false)
+          renamed += (first ? "" : "\t") + (cell.empty() ? cell : rename(cell));
+        line = renamed;
+      }
+      out << line << "\n";
+    }
+  }
+  ptnet::GaitTrial t = ptnet::read_gait_trials(std::string(PTNET_SOURCE_DIR) + "/bench/real-gait.csv", dir)[1];
+  ASSERT_EQ(t.name, "run_s02");
+  const ptnet::GaitTrialResult delaware = ptnet::run_gait_trial(t, {});
+  t.markers = (tmp / "run_s02.trc").string();
+  t.static_markers = (tmp / "run_s02_static.trc").string();
+  ptnet::MarkerReport report;
+  ptnet::MotionOptions mo;
+  mo.static_markers = t.static_markers;
+  ptnet::motion_from_trc(ptnet::read_trc(t.markers), mo, &report);
+  EXPECT_EQ(report.map, "common");
+  EXPECT_EQ(report.calibrated.size(), 8u);
+  const ptnet::GaitTrialResult common = ptnet::run_gait_trial(t, {});
+  EXPECT_NEAR(common.simulated.rmse_bw, delaware.simulated.rmse_bw, 0.01);
+  EXPECT_NEAR(common.simulated.peak_error_pct, delaware.simulated.peak_error_pct, 1.0);
+  fs::remove_all(tmp);
 }
