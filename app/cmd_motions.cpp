@@ -2,6 +2,7 @@
 //
 //   ptnet motions --category walking --performer 2 --take 1 --seconds 10 --out walk.bvh
 //   ptnet motions --performers 5 --takes 2 --out-dir clips/      # + clips/clips.csv
+//   ptnet motions --from trial.trc --static static.trc --out trial.bvh   # a file's canonical joints
 //
 // One clip, or a whole set (every performer x category x take) with a
 // clips.csv manifest (file,subject,category,take; subject = performer).
@@ -38,6 +39,8 @@ struct MotionsCli {
   std::uint64_t seed = 0;
   double height_cm = 0;
   bool force = false;
+  // A clip read from a file (BVH or markers) instead of generated.
+  std::string from, static_markers, marker_map;
 };
 
 std::vector<Category> parse_categories(const std::string& list) {
@@ -72,6 +75,20 @@ void run_one(const MotionsCli& o) {
   std::snprintf(height, sizeof height, "%.1f", o.height_cm > 0 ? o.height_cm : performer_height_cm(o.performer, o.seed));
   progress("[motions] " + o.out + ": " + category_name(c) + ", performer " + std::to_string(o.performer) + " (" +
            height + " cm), take " + std::to_string(o.take) + ", " + std::to_string(m.size()) + " frames");
+}
+
+// A motion file (BVH or .trc markers) on the canonical skeleton, as BVH: a
+// marker trial's joints for any BVH viewer.
+void run_from(const MotionsCli& o) {
+  check_output_path(o.out, o.force);
+  MotionOptions mo;
+  mo.fps = o.fps;
+  mo.static_markers = o.static_markers;
+  mo.marker_map = o.marker_map;
+  const Motion m = load_motion(o.from, mo);
+  write_bvh(motion_to_bvh(m), o.out, o.force);
+  progress("[motions] " + o.out + ": " + o.from + " on the canonical skeleton, " + std::to_string(m.size()) +
+           " frames at " + number_text(m.fps) + " fps");
 }
 
 void run_set(const MotionsCli& o) {
@@ -130,15 +147,24 @@ void setup(CLI::App& app) {
   cmd->add_option("--seed", opt->seed, "Seed, mixed with performer and take")->capture_default_str();
   cmd->add_option("--height-cm", opt->height_cm, "Body height (cm); default: the performer's own")
       ->check(in_range(50, 250));
+  auto* from = cmd->add_option("--from", opt->from,
+                               "One clip read from a motion file (BVH, or markers .trc) instead of generated: its\n"
+                               "canonical joints as BVH (--out)");
+  auto* static_markers = cmd->add_option("--static", opt->static_markers, "--from .trc: the static trial");
+  auto* map = cmd->add_option("--marker-map", opt->marker_map, "--from .trc: a shipped marker map or a map file");
   cmd->add_flag("--force", opt->force, "Overwrite existing files");
   out->excludes(out_dir);
-  out->needs(category);
+  from->needs(out)->excludes(category)->excludes(out_dir);
+  static_markers->needs(from);
+  map->needs(from);
   for (auto* o : {performers, takes, categories}) o->excludes(out)->needs(out_dir);
   for (auto* o : {category, performer, take}) o->excludes(out_dir);
   cmd->callback([opt]() {
+    if (!opt->from.empty()) return run_from(*opt);
     if (opt->out.empty() && opt->out_dir.empty())
       throw CLI::RequiredError("--out (one clip) or --out-dir (a set)");
     if (!opt->out_dir.empty() && opt->performers < 1) throw CLI::RequiredError("--performers");
+    if (!opt->out.empty() && opt->category.empty()) throw CLI::RequiredError("--category (or --from)");
     if (!opt->out.empty())
       run_one(*opt);
     else

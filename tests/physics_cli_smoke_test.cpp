@@ -2,7 +2,8 @@
 // sequence's ground reaction and refuses to overwrite it; `ptnet
 // physics-bench` on the real trials (skipped without ../shared/real-gait)
 // writes its page, table and force files, refuses to overwrite them, and a
-// bad trials CSV is one line; `ptnet info` and `ptnet simulate` read a .trc.
+// bad trials CSV is one line; `ptnet info`, `ptnet simulate` and `ptnet
+// motions --from` read a .trc.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -93,6 +94,13 @@ TEST(CliMarkers, InfoAndSimulateReadATrc) {
   const RunResult sim = d.run("simulate --clips c.csv --bodies s.csv --out r.h5 --placement follow");
   EXPECT_EQ(sim.status, 0) << sim.err;
   EXPECT_TRUE(fs::exists(d.path / "r.h5"));
+  // The trial's canonical joints as BVH, read back.
+  ASSERT_EQ(d.run("motions --from '" + kGait + "/run_s02.trc' --static '" + kGait + "/run_s02_static.trc' --out r.bvh")
+                .status,
+            0);
+  const RunResult bvh = d.run("info r.bvh --json");
+  ASSERT_EQ(bvh.status, 0) << bvh.err;
+  EXPECT_EQ(nlohmann::json::parse(bvh.out)["frames"], 300);  // 10 s at 30 fps
   // A marker map that cannot place the file: one line, no output.
   std::ofstream(d.path / "m.map") << "r_asis = NOPE\n";
   const RunResult bad = d.run("info '" + kGait + "/run_s02.trc' --marker-map m.map");
