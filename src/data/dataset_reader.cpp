@@ -137,6 +137,7 @@ void Dataset::Impl::read_bodies() {
   if (!file.nameExists("bodies") || file.childObjType("bodies") != H5O_TYPE_DATASET)
     throw Error::in(path, "missing /bodies table");
   H5::DataSet ds = file.openDataSet("bodies");
+  h5::check_local_storage(ds, path, "/bodies");
   if (ds.getTypeClass() != H5T_COMPOUND)
     throw Error::in(path, "/bodies is not a table (compound dataset)");
   H5::CompType type = ds.getCompType();
@@ -186,6 +187,7 @@ void Dataset::Impl::read_sequences() {
     if (group.childObjType(m.name) != H5O_TYPE_DATASET)
       throw Error::in(path, "/sequences/" + m.name + " is not a dataset");
     H5::DataSet ds = group.openDataSet(m.name);
+    h5::check_local_storage(ds, path, where);
     H5::DataSpace space = ds.getSpace();
     const int rank = space.getSimpleExtentNdims();
     std::vector<hsize_t> dims(std::max(rank, 0));
@@ -227,6 +229,7 @@ void Dataset::Impl::read_floors() {
     if (it == sequence_index.end()) throw Error::in(path, where + ": no sequence '" + name + "'");
     if (group.childObjType(name) != H5O_TYPE_DATASET) throw Error::in(path, where + " is not a dataset");
     H5::DataSet ds = group.openDataSet(name);
+    h5::check_local_storage(ds, path, where);
     H5::DataSpace space = ds.getSpace();
     const int rank = space.getSimpleExtentNdims();
     std::vector<hsize_t> dims(std::max(rank, 0));
@@ -262,9 +265,11 @@ Dataset::Dataset(Dataset&&) noexcept = default;
 Dataset& Dataset::operator=(Dataset&&) noexcept = default;
 Dataset::~Dataset() = default;
 
-// Reads and validates everything but the frames from the open file.
+// Reads and validates everything but the frames from the open file. Links
+// first: the reads after them resolve names, which follows links.
 void Dataset::Impl::read_structure() {
   try {
+    h5::check_hard_links(file, path);
     read_root();
     read_bodies();
     read_sequences();

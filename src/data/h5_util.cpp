@@ -1,6 +1,8 @@
 #include "data/h5_util.hpp"
 
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <vector>
 
 #include "ptnet/error.hpp"
@@ -35,6 +37,74 @@ std::string error_stack_text() {
     if (text.size() > 200) break;
   }
   return text;
+}
+
+namespace {
+constexpr std::size_t kMaxLinkValue = 4096;  // bytes of a link's target shown in a message
+
+struct LinkVisit {
+  std::map<haddr_t, std::string> named;  // objects seen, by address: their first name
+  std::string problem;                   // the first link refused, described
+};
+
+// The target of soft or external link `name` (relative to `group`), read
+// without traversing it; "" when it cannot be read.
+std::string link_target(hid_t group, const char* name, const H5L_info_t& info) {
+  if (info.u.val_size == 0 || info.u.val_size > kMaxLinkValue) return "";
+  std::vector<char> buf(info.u.val_size);
+  if (H5Lget_val(group, name, buf.data(), buf.size(), H5P_DEFAULT) < 0) return "";
+  if (info.type == H5L_TYPE_SOFT) return std::string(buf.data(), ::strnlen(buf.data(), buf.size()));
+  const char *file = nullptr, *object = nullptr;
+  unsigned flags = 0;
+  if (H5Lunpack_elink_val(buf.data(), buf.size(), &flags, &file, &object) < 0 || !file || !object) return "";
+  return std::string(file) + ":" + object;
+}
+
+herr_t visit_link(hid_t group, const char* name, const H5L_info_t* info, void* data) {
+  auto* visit = static_cast<LinkVisit*>(data);
+  const std::string here = escaped("/" + std::string(name), 80, false);
+  if (info->type == H5L_TYPE_HARD) {
+    const auto [first, fresh] = visit->named.emplace(info->u.address, here);
+    if (fresh) return 0;
+    visit->problem = here + " is a second name of " + first->second;
+    return 1;
+  }
+  const std::string kind = info->type == H5L_TYPE_SOFT       ? "a soft link"
+                           : info->type == H5L_TYPE_EXTERNAL ? "an external link"
+                                                             : "a user-defined link";
+  const std::string target =
+      info->type == H5L_TYPE_SOFT || info->type == H5L_TYPE_EXTERNAL ? link_target(group, name, *info) : "";
+  visit->problem = here + " is " + kind + (target.empty() ? "" : " to " + escaped(target, 80));
+  return 1;  // stop at the first
+}
+}  // namespace
+
+void check_hard_links(const H5::H5File& file, const std::string& path) {
+  LinkVisit visit;
+  H5O_info_t root{};
+  if (H5Oget_info2(file.getId(), &root, H5O_INFO_BASIC) < 0)
+    throw H5::FileIException("H5Oget_info2", "cannot read the root group");
+  visit.named.emplace(root.addr, "/ (the root group)");
+  if (H5Lvisit(file.getId(), H5_INDEX_NAME, H5_ITER_NATIVE, visit_link, &visit) < 0)
+    throw H5::FileIException("H5Lvisit", "cannot list the links of the file");
+  if (!visit.problem.empty())
+    throw Error::in(path, visit.problem + "; ptnet reads objects stored in the file itself, each under one name");
+}
+
+void check_local_storage(const H5::DataSet& ds, const std::string& path, const std::string& where) {
+  const H5::DSetCreatPropList plist = ds.getCreatePlist();
+  if (plist.getLayout() == H5D_VIRTUAL)
+    throw Error::in(path, where + " is a virtual dataset (its data are in other files); a dataset holds its data "
+                                  "itself (ptnet reads no other file)");
+  if (H5Pget_external_count(plist.getId()) > 0) {
+    char name[256] = "";
+    off_t offset = 0;
+    hsize_t size = 0;
+    H5Pget_external(plist.getId(), 0, sizeof name, name, &offset, &size);
+    name[sizeof name - 1] = '\0';
+    throw Error::in(path, where + " keeps its data in the external file " + escaped(name, 80) +
+                              "; a dataset holds its data itself (ptnet reads no other file)");
+  }
 }
 
 H5::Group create_group(const H5::H5Location& parent, const std::string& name) {
