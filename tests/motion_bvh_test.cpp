@@ -429,6 +429,29 @@ TEST(Canonical, UnmappableListsMissingAndFound) {
   }
 }
 
+// A rate within 1e-4 of the file's is the file's rate written with a few
+// digits (0.0333333 s): the frames as they are, at exactly that rate. A
+// rate that is not one (NaN, infinity, beyond the range) is an error, not
+// the file's own rate.
+TEST(Resample, TheRateAskedForIsTheMotionsOrAnError) {
+  const Bvh b = read_bvh(kSmall);
+  MotionOptions o;
+  o.keep_tpose = true;
+  EXPECT_EQ(motion_from_bvh(b, o).fps, 30);
+  EXPECT_EQ(motion_from_bvh(b, o).size(), 4);
+  o.fps = 0;
+  EXPECT_EQ(motion_from_bvh(b, o).fps, b.fps());
+  for (const double fps : {double(NAN), double(INFINITY), -double(INFINITY), 5000.0}) {
+    o.fps = fps;
+    try {
+      motion_from_bvh(b, o);
+      ADD_FAILURE() << fps << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), "fps: " + number_text(fps) + " is not in (0, 4000]");
+    }
+  }
+}
+
 TEST(TPose, DetectedAndDroppedByDefault) {
   const Bvh b = read_bvh(kSmall);
   const auto map = map_canonical(b);

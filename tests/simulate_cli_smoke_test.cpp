@@ -110,6 +110,25 @@ TEST_F(SimulateCli, RealClipsWithClipsCsv) {
     EXPECT_NE(r.out.find(s), std::string::npos) << s << " not in " << r.out.substr(0, 2000);
 }
 
+// Every clip of the CMU corpus (60 fps files with Frame Time 0.016667,
+// 120 fps ones with .0083333) at every common rate: before the fix --fps
+// 60 and 120 failed after simulating every sequence ("fps 59.9988 differs
+// from the dataset's 60").
+TEST_F(SimulateCli, EveryCommonFpsOnTheWholeCorpus) {
+  const fs::path corpus = PTNET_SHARED_CORPUS;
+  if (!fs::exists(corpus / "clips.csv")) GTEST_SKIP() << "../shared/mocap-corpus not found";
+  for (const int fps : {25, 30, 50, 60, 100, 120}) {
+    const std::string out = "corpus" + std::to_string(fps) + ".h5";
+    RunResult r = run("-q simulate --clips '" + (corpus / "clips.csv").string() +
+                      "' --bodies bodies.csv --no-floor --threads 2 --fps " + std::to_string(fps) + " --out " + out);
+    ASSERT_EQ(r.status, 0) << fps << " fps: " << r.err;
+    r = run("info " + out + " --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\"fps\": " + std::to_string(fps)), std::string::npos) << r.out.substr(0, 400);
+    fs::remove(dir_ / out);
+  }
+}
+
 TEST_F(SimulateCli, BadInputIsOneLineExitOneAndNoFile) {
   const std::vector<std::string> base{"bodies.csv"};
   expect_error("--motions missing.bvh --bodies bodies.csv --out o.h5", {"missing.bvh", "no such file"}, base);

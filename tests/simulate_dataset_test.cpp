@@ -124,6 +124,40 @@ TEST_F(SimulateDataset, ClipsCsvRowsAndErrors) {
   EXPECT_EQ(one[0].meta.take, 1);
 }
 
+// A BVH's Frame Time is written with a few digits: 0.016667 is 59.9988 fps,
+// .0083333 120.0005, 0.033333 30.0003. Such a clip is recorded at the rate
+// it rounds, and every rate asked for is the dataset's, checked before any
+// simulation (before the fix, --fps 60 on the first ended "fps 59.9988
+// differs from the dataset's 60" once every sequence was simulated).
+TEST_F(SimulateDataset, RoundedFrameTimesAreTheRatesTheyRound) {
+  std::string bvh = slurp(std::string(PTNET_TEST_DATA) + "/bvh/tpose_cmu_small.bvh");
+  const std::string motion = bvh.substr(bvh.find("Frames: 4"));
+  const std::string frame = motion.substr(motion.rfind('\n', motion.size() - 2) + 1);  // the last line
+  std::string frames;
+  for (int i = 0; i < 60; ++i) frames += frame;
+  bvh = bvh.substr(0, bvh.find("Frames: 4")) + "Frames: 64\nFrame Time: FT\n" +
+        motion.substr(motion.find('\n', motion.find("Frame Time")) + 1) + frames;
+  // Frame times as the corpora write them, and a marker system's 100 Hz.
+  for (const char* frame_time : {"0.016667", ".0083333", "0.033333", "0.0166670", "0.01", "0.04", "0.02"}) {
+    std::string text = bvh;
+    text.replace(text.find("FT"), 2, frame_time);
+    const fs::path file = dir_ / "clip.bvh";
+    spit(file, text);
+    for (const double fps : {25.0, 30.0, 50.0, 60.0, 100.0, 120.0}) {
+      SCOPED_TRACE(std::string(frame_time) + " s at " + number_text(fps) + " fps");
+      const auto clips = clips_from_files({file.string()}, "", {});
+      EXPECT_EQ(load_clip(clips[0], fps).fps, fps);
+      SimulateDatasetOptions o;
+      o.fps = fps;
+      o.threads = 1;
+      const std::string out = (dir_ / (std::string(frame_time) + "_" + number_text(fps) + ".h5")).string();
+      const std::string error = error_of([&] { simulate_dataset(clips, {kBodies[0]}, out, o); });
+      EXPECT_EQ(error, "(no error)");
+      if (error == "(no error)") EXPECT_EQ(Dataset::open(out).info().fps, fps);
+    }
+  }
+}
+
 TEST(ClipsAtSpeeds, EveryClipAtEverySpeedAndOneLineErrors) {
   const auto clips = embedded_clips(1, 1, 2.0, 4);
   const auto at = clips_at_speeds(clips, {1, 1.5});

@@ -20,6 +20,7 @@
 // HDF5 is not thread-safe here: use a writer or reader from one thread.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -58,6 +59,13 @@ struct SequenceMeta {
   int frames = 0;         // filled by Dataset::open
   bool floor = false;     // filled by Dataset::open: /floor/<name> exists
 };
+
+// True when a sequence at `fps` belongs in a dataset at `dataset_fps`: the
+// same rate up to rounding (1e-9 relative). DatasetWriter::add requires it;
+// simulate_dataset checks every clip before simulating any.
+inline bool same_fps(double fps, double dataset_fps) {
+  return std::abs(fps - dataset_fps) <= 1e-9 * dataset_fps;
+}
 
 class DatasetWriter {
  public:

@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -145,6 +146,18 @@ inline std::string number_text(double v) {
     std::snprintf(buf, sizeof buf, "%.0f", v);  // whole numbers in full: 1048576, not 1.04858e+06
   else
     std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// A number to as many significant digits as tell it apart from its
+// neighbours (6 to 17: "120", "120.0005", "59.998800023999518"), for a
+// message comparing numbers that number_text would print alike.
+inline std::string precise_text(double v) {
+  char buf[40];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
   return buf;
 }
 

@@ -119,7 +119,11 @@ struct MotionOptions {
   double metres_per_unit = 0;  // > 0 overrides `units` (e.g. from clips.csv)
   UpAxis up = UpAxis::y;
   bool keep_tpose = false;     // a leading T-pose frame is dropped by default
-  double fps = kFps;           // resample to this rate; <= 0 keeps the file's
+  // Resample to this rate (in kReadFpsRange); <= 0 keeps the file's. A file
+  // whose own rate is within 1e-4 of it is read as recorded at it, frame for
+  // frame: its Frame Time is that rate written with a few digits (0.033333
+  // s is 30.0003 fps, 0.016667 s 59.9988, .0083333 s 120.0005).
+  double fps = kFps;
   // A treadmill's belt is detected and removed (treadmill_belt_velocity), so
   // that a treadmill trial is simulated as the same gait overground.
   bool remove_belt = true;
@@ -131,6 +135,9 @@ struct MotionOptions {
   std::string static_markers;
   double max_gap_s = 0.1;
 };
+// The rates a motion is read at: a dataset's fps (kFpsRange) over a clip's
+// playback speed (kClipSpeedRange, simulate_dataset.hpp), up to 1000 / 0.25.
+inline constexpr Range kReadFpsRange{0, 4000, true};
 
 // True if frame `f` is a T-pose: arms out horizontally, legs straight.
 bool is_tpose(const Bvh& bvh, int frame, const std::array<int, kJointCount>& map, double scale,
@@ -141,6 +148,8 @@ bool is_tpose(const Bvh& bvh, int frame, const std::array<int, kJointCount>& map
 Bvh resample(const Bvh& bvh, double fps);
 
 // Reads, maps, drops a leading T-pose, resamples, and runs FK; then grounds:
+// Throws Error for an options.fps that is neither a finite number <= 0 nor
+// in kReadFpsRange (NaN, infinity).
 // shifts z so that the floor (lower quartile over frames of the lowest foot
 // point, lowest_foot_z) is at z = 0. Name: the file stem.
 Motion motion_from_bvh(const Bvh& bvh, const MotionOptions& options);

@@ -286,7 +286,7 @@ Motion load_clip(const ClipSource& clip, double fps) {
     m = load_motion(clip.path, o);
     if (m.size() == 0) throw Error::in(clip.path, "no frames");
   }
-  m.fps *= clip.speed;  // the frames read at fps / speed play at fps (a file's own rate kept when it is fps)
+  m.fps *= clip.speed;  // the frames read at fps / speed play at fps
   return clip_span(std::move(m), clip);
 }
 

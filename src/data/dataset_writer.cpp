@@ -73,9 +73,9 @@ void check_frames(const std::string& path, const std::string& where, const Datas
     throw Error::in(path, where + ": mat " + std::to_string(seq.mat.rows) + " x " +
                               std::to_string(seq.mat.cols) + " differs from the dataset's " +
                               std::to_string(mat.rows) + " x " + std::to_string(mat.cols));
-  if (std::abs(seq.fps - info.fps) > 1e-9 * info.fps)
-    throw Error::in(path, where + ": fps " + number_text(seq.fps) + " differs from the dataset's " +
-                              number_text(info.fps));
+  if (!same_fps(seq.fps, info.fps))
+    throw Error::in(path, where + ": fps " + precise_text(seq.fps) + " differs from the dataset's " +
+                              precise_text(info.fps));
   const int frames = seq.frames();
   if (frames <= 0 || seq.kpa.size() != size_t(frames) * mat.cells())
     throw Error::in(path, where + ": has no frames");

@@ -65,9 +65,10 @@ int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>&
   return options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// 1. Every clip, loaded once: a bad file fails the run before any simulation.
-//    Each clip's placement on the mat is decided here, once, from the
-//    source motion; every body's copy gets it scaled (MotionPlacement).
+// 1. Every clip, loaded once: a bad file, or one that would not play at the
+//    dataset's fps, fails the run before any simulation. Each clip's
+//    placement on the mat is decided here, once, from the source motion;
+//    every body's copy gets it scaled (MotionPlacement).
 void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptions& options, int threads,
                 std::vector<Motion>& motions, std::vector<MotionPlacement>& places) {
   const int nc = int(clips.size());
@@ -77,7 +78,12 @@ void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptio
   int loaded = 0;
   std::vector<std::string> warnings(clips.size());
   parallel_for(nc, threads, [&](int i) {
-    motions[std::size_t(i)] = load_clip(clips[std::size_t(i)], options.fps);
+    const ClipSource& clip = clips[std::size_t(i)];
+    motions[std::size_t(i)] = load_clip(clip, options.fps);
+    if (!same_fps(motions[std::size_t(i)].fps, options.fps))
+      throw Error::in(clip.path.empty() ? clip.meta.source : clip.path,
+                      "plays at " + precise_text(motions[std::size_t(i)].fps) + " fps, not at the dataset's " +
+                          precise_text(options.fps));
     places[std::size_t(i)] = place_motion(motions[std::size_t(i)], options.sim);
     warnings[std::size_t(i)] =
         dynamics_warning(clips[std::size_t(i)].meta.motion_id, check_dynamics(motions[std::size_t(i)], options.sim));

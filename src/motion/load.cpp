@@ -14,6 +14,7 @@
 namespace ptnet {
 
 Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
+  if (!std::isfinite(options.fps) || options.fps > 0) check_range("fps", options.fps, kReadFpsRange);
   if (source.frames() < 1) throw Error::in(source.source, "no frames");
   const double scale = options.metres_per_unit > 0
                            ? options.metres_per_unit
@@ -27,15 +28,18 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
     trimmed.values.erase(trimmed.values.begin(), trimmed.values.begin() + source.channel_count);
     bvh = &trimmed;
   }
+  // A file within kSameRate of the rate asked for is recorded at it: its
+  // Frame Time is that rate rounded to a few digits (MotionOptions::fps).
+  constexpr double kSameRate = 1e-4;
   Bvh resampled;
-  if (options.fps > 0 && std::abs(options.fps - bvh->fps()) > 1e-4 * options.fps) {
+  if (options.fps > 0 && std::abs(options.fps - bvh->fps()) > kSameRate * options.fps) {
     resampled = resample(*bvh, options.fps);
     bvh = &resampled;
   }
 
   Motion m;
   m.name = std::filesystem::path(source.source).stem().string();
-  m.fps = bvh->fps();
+  m.fps = options.fps > 0 ? options.fps : bvh->fps();
   if (!trimmed.joints.empty()) m.start_s = source.frame_time;  // the T-pose frame dropped
   const std::vector<Eigen::Vector3d> p = forward_kinematics(*bvh, scale, options.up);
   const std::size_t J = bvh->joints.size();
