@@ -50,6 +50,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
   o.progress = train_progress();
   const auto source = open_dataset_source(data_path);
   const TrainResult t = train(*source, model_dir, o);
+  print_warning("train", model_dir, t.warning);
 
   EvaluationRun r;
   r.model_dir = model_dir;
@@ -58,6 +59,7 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
   r.force = c.force;
   r.progress = print;
   const EvaluationResult e = run_evaluation(r);
+  print_warning("evaluate", ModelFiles(model_dir).config(), e.warning);
   char line[160];
   std::snprintf(line, sizeof line, "model: %s (%d epochs, best %d, %.0f s)", model_dir.c_str(), t.epochs_run,
                 t.best_epoch, t.seconds);

@@ -19,6 +19,7 @@ namespace {
 void run(EvaluationRun r) {
   r.progress = print;
   const EvaluationResult result = run_evaluation(r);
+  print_warning("evaluate", ModelFiles(r.model_dir).config(), result.warning);
   std::cout << result.table << "\n" << paper_table2_line() << "\n";
   for (const auto& p : result.written) std::cout << "wrote " << p << "\n";
   std::cout << "open " << result.page << " in a browser: the report on one page\n";

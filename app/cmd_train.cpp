@@ -62,6 +62,7 @@ void run(const TrainCli& c) {
   o.resume = r.resume;
   o.fit_contact_threshold = !c.no_contact_threshold;
   o.force = r.force;
+  o.strict = r.strict;
   o.world_size = r.world_size;
   o.rank = r.rank;
   o.rendezvous = r.rendezvous;
@@ -69,7 +70,8 @@ void run(const TrainCli& c) {
   if (o.rank == 0) o.progress = train_progress();  // the other ranks report errors only
   check_options(o);  // before the data is opened
   auto source = open_dataset_source(c.data);
-  train(*source, c.out, o);
+  const TrainResult result = train(*source, c.out, o);
+  if (o.rank == 0) print_warning("train", c.out, result.warning);
 }
 
 // " (paper 128, fast 64, full 64)": an option's value in each preset, for its help text.
@@ -213,6 +215,9 @@ void add_run_options(CLI::App* cmd, TrainCli* opt) {
                 "A motion recorded on one body only trains as the pair (body -> same body): for "
                 "fine-tuning on real recordings (ptnet import --dataset ... --subjects ...)");
   cmd->add_flag("--force", r.force, "Overwrite an existing model folder");
+  cmd->add_flag("--strict", r.strict,
+                "Exit 1 when the model is no better than the all-zero or the copy baseline on validation "
+                "(the folder is kept; without it a warning line says so)");
   cmd->add_option("--nproc", opt->nproc,
                   "Start this many ranks on this machine (127.0.0.1, a free port) and wait for them; "
                   "progress from rank 0 (docs/distributed.md)")

@@ -73,6 +73,13 @@ inline CLI::Validator thread_count(bool zero_means_default) {
   return in_range(zero_means_default ? 0 : 1, max_threads());
 }
 
+// A warning of the library's about a result (TrainResult::warning,
+// EvaluationResult::warning) on stderr, "train: warning: model/: ...", with
+// or without --quiet; nothing when `warning` is empty.
+inline void print_warning(const std::string& command, const std::string& where, const std::string& warning) {
+  if (!warning.empty()) std::cerr << command << ": warning: " << where << ": " << warning << "\n";
+}
+
 // Global flags every command may read (set by main before callbacks run).
 struct Globals {
   bool quiet = false;  // no progress on stderr

@@ -63,12 +63,13 @@ TrainOverrides overrides_from(const py::kwargs& kwargs) {
 void bind_train(py::module_& m) {
   m.def("train",
         [](const std::string& data, const std::string& out, const std::string& preset, bool resume,
-           const std::string& init, bool identity_pairs, bool force, const py::kwargs& overrides) {
+           const std::string& init, bool identity_pairs, bool force, bool strict, const py::kwargs& overrides) {
           TrainOptions o = TrainOptions::from_preset(preset, overrides_from(overrides));
           o.resume = resume;
           o.init = init;
           o.identity_pairs = identity_pairs;
           o.force = force;
+          o.strict = strict;
           check_options(o);
           TrainResult r;
           {
@@ -83,16 +84,21 @@ void bind_train(py::module_& m) {
           d["val_rmse_kpa"] = r.val_rmse_kpa;
           d["stopped_early"] = r.stopped_early;
           d["seconds"] = r.seconds;
+          d["warning"] = r.warning;
+          if (!r.warning.empty() && PyErr_WarnEx(PyExc_UserWarning, (out + ": " + r.warning).c_str(), 1) < 0)
+            throw py::error_already_set();  // warnings turned into errors
           return d;
         },
         py::arg("data"), py::arg("out"), py::kw_only(), py::arg("preset") = "paper", py::arg("resume") = false,
-        py::arg("init") = "", py::arg("identity_pairs") = false, py::arg("force") = false,
+        py::arg("init") = "", py::arg("identity_pairs") = false, py::arg("force") = false, py::arg("strict") = false,
         "`ptnet train`: the preset (paper | fast | full) with any option of TrainOverrides as a keyword "
         "(epochs, batch, micro_batch, lr, lr_halve_every, patience, seed, threads, stride, crop_rows, "
         "cache_mb, contact_weight, samples_per_epoch, val_samples, arch, align, loss, channels, hidden, "
         "latent, window, context, mirror; None: the preset's) on the dataset file `data`, into the model "
         "folder `out`; returns the run's summary as a dict. The same checks as the CLI: resume and init "
-        "exclude each other, a contact weight needs the frame network.");
+        "exclude each other, a contact weight needs the frame network. A model no better than the all-zero "
+        "or copy baseline on validation is a UserWarning (and the dict's \"warning\"), a ValueError with "
+        "strict=True (the folder is kept).");
 }
 
 }  // namespace ptnet::python

@@ -11,8 +11,9 @@ standard library only.
       Files already there must be identical (a resumed run of the same split).
   lopo.py aggregate WORK
       Reads every fold's report/metrics.json (the take-2 average of ptnet
-      evaluate: model, body_scale, floor) and times.txt, prints the table and
-      writes WORK/lopo.json.
+      evaluate: model, body_scale, floor, and its warning about a model no
+      better than a baseline) and times.txt, prints the table (and a line a
+      warning) and writes WORK/lopo.json.
 
 Errors are one line on stderr naming the file, exit status 1.
 """
@@ -206,6 +207,8 @@ def fold_result(work, subject):
     _, test = read_csv(os.path.join(fold, "test_clips.csv"), ["file", "subject"])
     _, train = read_csv(os.path.join(fold, "train_clips.csv"), ["file", "subject"])
     r["val_ratio"] = validation_ratio(os.path.join(fold, "model", "config.json"))
+    # ptnet evaluate's word on a model no better than the all-zero or copy baseline on validation.
+    r["warning"] = m.get("warning")
     r["clips"] = len(test)
     r["train_clips"] = len(train)
     times_path = os.path.join(fold, "times.txt")
@@ -297,6 +300,9 @@ def aggregate(work):
     print(f"leave one performer out, preset {preset}, training seed {settings.get('seed', '?')}: "
           f"{len(done)} of {len(subjects)} folds" + (f" (missing: {', '.join(missing)})" if missing else ""))
     print(table(rows, by_performer, by_pair))
+    for r in rows:
+        if r["warning"]:
+            print(f"warning: performer {r['performer']}: the model's {r['warning']}")
     print(f"targets (issue 27): mean x body scale {by_performer['ratio']:.2f} (<= {kTargetMeanRatio}: "
           f"{'met' if targets['mean_ratio']['met'] else 'not met'}), mean binary R^2 "
           f"{by_performer['binary_r2_model']:.3f} (>= {kTargetBinaryR2}: "

@@ -159,6 +159,8 @@ while read -r p n_train n_test; do
   fi
   timed evaluate "$dir/evaluate.log" "$ptnet" evaluate --model "$dir/model" --data "$dir/test.h5" \
     --out "$dir/report" --threads 1 --force
+  # A model no better than the all-zero or copy baseline on validation: evaluate's warning.
+  grep -h '^evaluate: warning: ' "$dir/evaluate.log" | sed "s|^evaluate: |$head: |" || true
 done <<<"$folds"
 
 python3 "$src/scripts/lopo.py" aggregate "$work"

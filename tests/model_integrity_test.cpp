@@ -171,3 +171,22 @@ TEST(ZipCheck, TruncatedOrForeignArchivesAreNamed) {
     EXPECT_STREQ(e.what(), "m.pt: damaged archive: no end-of-central-directory record (truncated, or not a zip archive)");
   }
 }
+
+// config.json's validation metrics against the all-zero and copy baselines
+// (baseline_warning): a model must beat each by kBaselineMargin; a baseline
+// of RMSE 0 (identity pairs' copy) is no bar; older metrics without the
+// figures say nothing.
+TEST(BaselineWarning, BothFiguresNamedWhenNoBetter) {
+  const auto metrics = [](double model, double zero, double copy) {
+    return nlohmann::json{{"val_rmse_kpa", model}, {"val_rmse_zero_kpa", zero}, {"val_rmse_copy_kpa", copy}};
+  };
+  EXPECT_EQ(baseline_warning(metrics(13.82, 13.82, 15.104)),
+            "validation RMSE 13.820 kPa is no better than the all-zero baseline's 13.820 kPa (copy baseline "
+            "15.104 kPa)");
+  EXPECT_EQ(baseline_warning(metrics(6.0, 13.82, 6.02)),
+            "validation RMSE 6.000 kPa is no better than the copy baseline's 6.020 kPa (all-zero baseline "
+            "13.820 kPa)");
+  EXPECT_EQ(baseline_warning(metrics(5.0, 13.82, 6.02)), "");
+  EXPECT_EQ(baseline_warning(metrics(5.0, 13.82, 0.0)), "");  // identity pairs: the copy is the truth
+  EXPECT_EQ(baseline_warning(nlohmann::json{{"val_rmse_kpa", 5.0}}), "");
+}

@@ -11,6 +11,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/transfer.hpp"
+#include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 
 using namespace ptnet;
@@ -107,3 +108,59 @@ TEST_F(CliSmoke, TrainThenTransferToNpyAndH5) {
   EXPECT_EQ(r.status, 2);  // usage error: --out missing
   fs::remove_all(dir_);
 }
+
+// A model no better than doing nothing (a learning rate that leaves the
+// initial weights) is kept and reported: by `train` in a warning line naming
+// the all-zero and the copy baseline's validation RMSE (an error with
+// --strict), by `evaluate` in the same words, atop its page and in its
+// metrics.json (scripts/lopo.sh prints it). Before, all three said nothing.
+TEST(CliBaselines, AModelNoBetterThanTheBaselinesIsReported) {
+  const fs::path dir = fs::temp_directory_path() / ("ptnet_train_baselines_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A second original body, for evaluate's test pairs.
+  MemorySource src = ptnet::testing::synth_source(4, 2, 90);
+  const BodySpec second{"orig2", Sex::male, 181, 77, "original"};
+  src.add_body(second);
+  for (const SequenceMeta& m : std::vector<SequenceMeta>(src.sequences()))
+    if (m.body_id == "orig") {
+      SequenceMeta o = m;
+      o.body_id = second.id;
+      o.name = m.motion_id + "__" + second.id;
+      src.add_sequence(o, ptnet::testing::synth_sequence(std::stoi(m.motion_id.substr(1)), second, 90, src.mat()));
+    }
+  const std::string data = (dir / "data.h5").string(), model = (dir / "model").string();
+  ptnet::testing::write_source(src, data);
+  const std::string train = "train --data " + data + " --out " + model +
+                            " --preset fast --channels 4,8,8 --hidden 16 --latent 16 --epochs 1 --batch 16"
+                            " --samples-per-epoch 32 --val-samples 32 --threads 1 --lr 1e-9 --force";
+  const std::string said = "train: warning: " + model + ": ";
+  CmdResult r = run(train);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto line = r.err.find(said);
+  ASSERT_NE(line, std::string::npos) << r.err;
+  const auto start = line + said.size();
+  const std::string warning = r.err.substr(start, r.err.find('\n', start) - start);
+  EXPECT_EQ(warning.rfind("validation RMSE ", 0), 0u) << warning;
+  EXPECT_NE(warning.find(" kPa is no better than the "), std::string::npos) << warning;
+  EXPECT_NE(warning.find("all-zero baseline"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("copy baseline"), std::string::npos) << warning;
+
+  r = run(train + " --strict");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("ptnet: error: " + model + ": " + warning + " (--strict; the folder is kept)\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(fs::path(model) / "model.pt"));
+
+  r = run("evaluate --model " + model + " --data " + data + " --out " + (dir / "report").string() + " --threads 1");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("evaluate: warning: " + model + "/config.json: " + warning + "\n"), std::string::npos)
+      << r.err;
+  std::ifstream metrics(dir / "report" / "metrics.json"), page(dir / "report" / "index.html");
+  const std::string m((std::istreambuf_iterator<char>(metrics)), {}), p((std::istreambuf_iterator<char>(page)), {});
+  EXPECT_NE(m.find("\"warning\": \"" + warning + "\""), std::string::npos);
+  EXPECT_NE(p.find("<p class=\"warning\">"), std::string::npos);
+  fs::remove_all(dir);
+}
+

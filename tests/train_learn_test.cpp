@@ -64,6 +64,7 @@ TEST(TrainLearn, FastPresetArchitectureBeatsBodyScaleOnAHeldOutBody) {
   const double model = md.metrics["val_rmse_kpa"].get<double>();
   EXPECT_LT(model, 0.7 * md.metrics["val_rmse_zoom_kpa"].get<double>());
   EXPECT_LT(model, 0.7 * md.metrics["val_rmse_copy_kpa"].get<double>());
+  EXPECT_EQ(r.warning, "") << "a model that learned is no better than a baseline?";
   EXPECT_GE(r.epochs_run, 8);
 
   Transfer transfer(dir.string());

@@ -172,6 +172,8 @@ struct ReportOptions {
   int frames_per_category = 5;     // frames in each qualitative_<category>.png
   double threshold_kpa = kContactKpa;  // recorded in metrics.json
   std::string model_dir;           // the model's history.csv and config.json on the page ("": none)
+  std::string warning;             // about the model (EvaluationResult::warning), atop the page and in
+                                   // metrics.json ("warning"); "": none
 };
 
 // Writes into out_dir (each file atomically): metrics.csv (one row per pair,
@@ -210,6 +212,9 @@ struct EvaluationResult {
   std::string table;                   // format_table(rows)
   std::vector<std::string> written;    // report files
   std::string page;                    // the report page, out_dir/index.html
+  // baseline_warning of the model's validation metrics (config.json): ""
+  // for a model that beat the all-zero and copy baselines when trained.
+  std::string warning;
 };
 EvaluationResult run_evaluation(const EvaluationRun& run);
 

@@ -176,6 +176,18 @@ struct ModelDir {
   nlohmann::json integrity;
 };
 
+// A model no better than doing nothing: its validation RMSE (config.json's
+// metrics "val_rmse_kpa") is not below kBaselineMargin x the all-zero
+// baseline's ("val_rmse_zero_kpa") or the copy baseline's
+// ("val_rmse_copy_kpa"). Returns the warning, naming both figures
+// ("validation RMSE 13.820 kPa is no better than the all-zero baseline's
+// 13.820 kPa (copy baseline 15.104 kPa)"); "" when the model beats both, or
+// the metrics lack them. A baseline of RMSE 0 (the truth itself: a copy of
+// identity pairs, or empty frames) is no bar. `train` reports it (an Error
+// with TrainOptions::strict), `evaluate` repeats it.
+inline constexpr double kBaselineMargin = 0.99;  // beat a baseline by at least 1 %
+std::string baseline_warning(const nlohmann::json& metrics);
+
 // The digests in config.json (src/model/integrity_record.cpp; the digest: integrity.cpp).
 // The digest recorded in dir.integrity for `file` ("model.pt",
 // "checkpoint.pt"), "" when none; `epoch` gets the checkpoint's epoch (-1).

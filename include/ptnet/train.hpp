@@ -129,6 +129,10 @@ struct TrainOptions {
   std::string init;                 // start from this model folder's weights
   bool identity_pairs = false;      // WindowOptions::identity_pairs (fine-tuning on recordings)
   bool force = false;               // overwrite an existing model folder
+  // A model no better than the all-zero or copy baseline on validation
+  // (baseline_warning, model_config.hpp) is an Error, after the folder is
+  // written (it is kept), instead of TrainResult::warning.
+  bool strict = false;
   // Data-parallel training over `world_size` processes (docs/distributed.md):
   // every optimiser step's micro-batches are dealt round-robin to the ranks
   // (micro-batch m to rank m % world_size), gradients and BatchNorm
@@ -186,6 +190,10 @@ struct TrainResult {
   double val_rmse_kpa = 0;    // of the best weights on the validation windows
   bool stopped_early = false;
   double seconds = 0;
+  // baseline_warning of the final metrics: "" for a model that beats the
+  // all-zero and the copy baseline on validation, else the line saying it
+  // does not (front ends show it; TrainOptions::strict makes it an Error).
+  std::string warning;
   // Distributed runs: this rank's all-reduces (count, payload bytes, time).
   long long allreduce_calls = 0, allreduce_bytes = 0;
   double allreduce_seconds = 0;

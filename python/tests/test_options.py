@@ -76,3 +76,26 @@ class SimulateOptionsTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class BaselineTest(unittest.TestCase):
+    """A model no better than the all-zero or copy baseline on validation (a
+    learning rate that leaves its initial weights): a UserWarning and the
+    result's "warning"; with strict=True a ValueError, the folder kept."""
+
+    def test_a_useless_model_is_said_so(self):
+        from common import fixture
+        data = fixture("data.h5")
+        out = os.path.join(workdir("baselines"), "model")
+        args = dict(preset="fast", epochs=1, samples_per_epoch=32, val_samples=16, channels=(4, 8, 8), hidden=16,
+                    latent=16, threads=1, lr=1e-9, force=True)
+        with self.assertWarns(UserWarning) as w:
+            result = ptnet.train(data, out, **args)
+        self.assertTrue(result["warning"].startswith("validation RMSE "), result["warning"])
+        self.assertIn("all-zero baseline", result["warning"])
+        self.assertIn("copy baseline", result["warning"])
+        self.assertEqual(str(w.warning), f"{out}: {result['warning']}")
+        with self.assertRaises(ValueError) as ctx:
+            ptnet.train(data, out, strict=True, **args)
+        self.assertEqual(str(ctx.exception), f"{out}: {result['warning']} (strict; the folder is kept)")
+        self.assertTrue(os.path.exists(os.path.join(out, "model.pt")))

@@ -297,6 +297,8 @@ std::vector<std::string> write_report_html(const std::vector<EvalRow>& rows,
     << " kPa. Every number: <a href=\"metrics.csv\">metrics.csv</a>"
     << " (one row per pair and method), <a href=\"metrics.json\">metrics.json</a> (group "
        "means).</p>\n";
+  if (!options.warning.empty())
+    b << "<p class=\"warning\"><b>Warning:</b> the model's " << html_escape(options.warning) << ".</p>\n";
   b << "<h2>Table 2: per category, seen and unseen motions</h2>\n";
   if (s.methods.empty())
     b << "<p>No evaluated pairs.</p>\n";

@@ -129,6 +129,7 @@ std::vector<std::string> write_report(const Dataset& dataset, const std::vector<
   j["noise_floor"] = floor ? "groups.*.*.floor: the truth simulated again with another sensor seed" : kNoFloorNote;
   j["definitions"] = "see include/ptnet/eval.hpp and docs/results.md";
   j["paper_table2"] = paper_table2();
+  if (!options.warning.empty()) j["warning"] = options.warning;
   for (const auto& g : summarise(rows)) {
     nlohmann::json m = metrics_json(g.mean);
     m["rows"] = g.rows;

@@ -36,6 +36,7 @@ EvaluationResult run_evaluation(const EvaluationRun& run) {
   ro.force = run.force;
   ro.threshold_kpa = run.threshold_kpa;
   ro.model_dir = run.model_dir;
+  ro.warning = result.warning = baseline_warning(net.model().metrics);
   result.written = write_report(dataset, result.rows, model, ro);
   result.page = (std::filesystem::path(run.out_dir) / "index.html").string();
   result.table = format_table(result.rows);

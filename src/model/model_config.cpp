@@ -4,6 +4,7 @@
 // config_json.cpp. No Torch here.
 #include "ptnet/model_config.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -67,6 +68,21 @@ std::array<float, 3> Normalisation::attributes(const BodySpec& body) const {
   return {body.sex == Sex::male ? 1.0f : 0.0f,
           float((body.height_cm - height_mean_cm) / height_std_cm),
           float((body.weight_kg - weight_mean_kg) / weight_std_kg)};
+}
+
+std::string baseline_warning(const nlohmann::json& metrics) {
+  const auto number = [&](const char* key) {
+    const auto it = metrics.find(key);
+    return it != metrics.end() && it->is_number() ? it->get<double>() : NAN;
+  };
+  const double model = number("val_rmse_kpa"), zero = number("val_rmse_zero_kpa"), copy = number("val_rmse_copy_kpa");
+  if (!std::isfinite(model) || !std::isfinite(zero) || !std::isfinite(copy)) return "";
+  const auto beats = [&](double baseline) { return baseline <= 0 || model < kBaselineMargin * baseline; };
+  if (beats(zero) && beats(copy)) return "";
+  const bool zero_first = !beats(zero);
+  return "validation RMSE " + fixed_text(model) + " kPa is no better than the " +
+         (zero_first ? "all-zero" : "copy") + " baseline's " + fixed_text(zero_first ? zero : copy) + " kPa (" +
+         (zero_first ? "copy" : "all-zero") + " baseline " + fixed_text(zero_first ? copy : zero) + " kPa)";
 }
 
 }  // namespace ptnet

@@ -224,6 +224,10 @@ TrainResult final_metrics(TrainRun& run, PressureTransferNet& net, Batcher& batc
                 std::isfinite(v.zoom_rmse_kpa) ? format_number(", body scale %.3f", v.zoom_rmse_kpa).c_str() : "",
                 binary_r2, v.binary_r2.front(), v.copy_binary_r2, md.norm.contact_threshold_kpa, result.seconds);
   run.log(line);
+  // A model no better than a baseline is kept, and said so (an Error with strict).
+  result.warning = baseline_warning(md.metrics);
+  if (!result.warning.empty() && o.strict)
+    throw Error::in(run.dir.string(), result.warning + " (" + field_text("strict") + "; the folder is kept)");
   if (run.comm.distributed() && cs.calls > 0) {
     std::snprintf(line, sizeof line, "train: %d ranks, %lld all-reduces, %.3f ms and %s each on average (rank %d)",
                   run.comm.size(), (long long)cs.calls, 1e3 * cs.seconds / double(cs.calls),

@@ -12,6 +12,7 @@ body { font-family: sans-serif; margin: 24px auto; max-width: 1240px; padding: 0
 h1 { font-size: 24px; } h2 { font-size: 19px; margin-top: 36px; border-bottom: 1px solid #ddd; }
 h3 { font-size: 16px; }
 p.note, .note { color: #555; font-size: 13px; }
+p.warning { background: #fff4e0; border-left: 4px solid #d55e00; padding: 6px 10px; }
 table { border-collapse: collapse; margin: 8px 0 16px; font-size: 13px; }
 th, td { border: 1px solid #ccc; padding: 3px 8px; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
