@@ -13,6 +13,7 @@
 #include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -215,6 +216,20 @@ TEST_F(Rendezvous, FileRendezvousRefusesAFolder) {
     EXPECT_NE(r.err.find("(a folder)"), std::string::npos) << r.err;
   }
   EXPECT_TRUE(fs::is_empty(folder));
+}
+
+// A FIFO at the rendezvous path: rank 1 gives up within --dist-timeout
+// (before the fix it opened the FIFO before looking at it, and waited for a
+// writer for ever).
+TEST_F(Rendezvous, FileRendezvousRefusesAFifoWithinTheTimeout) {
+  const fs::path fifo = dir_ / "fifo.rdv";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto r = run_program("/usr/bin/timeout", "-s KILL " + std::to_string(int(kStart)) + " '" +
+                                 std::string(PTNET_BINARY) + "' " + train("fifo", 1, "file://" + fifo.string(), 3),
+                             dir_ / "fifo");
+  EXPECT_EQ(r.status, 1) << "137: killed at the bound\n" << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("(a FIFO), which is not a rendezvous file made by rank 0"), std::string::npos) << r.err;
 }
 
 TEST_F(Rendezvous, LauncherReportsAFailureAfterStoppingAStoppedRank) {

@@ -8,6 +8,8 @@
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -23,6 +25,7 @@
 
 using namespace ptnet;
 using ptnet::testing_cli::slurp;
+using ptnet::testing_util::error_of;
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
@@ -190,3 +193,21 @@ TEST_F(Store, FileStoreRefusesWhatRankZeroDidNotMake) {
   EXPECT_EQ(fs::file_size(empty), 0u);
   EXPECT_TRUE(fs::is_empty(folder));
 }
+
+// A FIFO where rank 1 looks for rank 0's file is refused within the
+// timeout: before the fix rank 1 opened it first, and blocked until a
+// writer came (for ever), whatever its timeout.
+TEST_F(Store, FileStoreRefusesAFifoWithinItsTimeout) {
+  const fs::path fifo = dir_ / "run.rdv";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  auto joined = std::async(std::launch::async, [&] { return error_of([&] { file_store(fifo.string(), 1, 2, seconds(1)); }); });
+  const bool ended = joined.wait_for(seconds(30)) == std::future_status::ready;
+  if (!ended) ::close(::open(fifo.c_str(), O_WRONLY));  // lets the blocked open return
+  EXPECT_TRUE(ended) << "rank 1 blocked on the FIFO";
+  EXPECT_EQ(joined.get(), "found " + fifo.string() + " (a FIFO), which is not a rendezvous file made by rank 0: give a "
+                          "path that does not exist");
+  struct stat st {};
+  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the FIFO was replaced";
+}
+

@@ -33,6 +33,10 @@ inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t(1) << 30;  // 1
 // (FIFOs) are read up to `max_bytes`.
 std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
 
+// What a file of stat mode `mode` is, for a message: "a folder", "a FIFO",
+// "a socket", "a character device", "a block device", "a regular file".
+const char* file_kind(unsigned mode);
+
 // The error of an input that cannot be opened, from its errno: "no such
 // file" (ErrorKind::not_found) or "cannot open: REASON" (ErrorKind::io).
 Error open_error(const std::string& path, int err);

@@ -21,6 +21,16 @@
 namespace ptnet {
 namespace fs = std::filesystem;
 
+const char* file_kind(unsigned mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISREG(mode)) return "a regular file";
+  return "not a regular file";
+}
+
 namespace {
 
 // ------------------------------------------------------------ inputs
@@ -33,14 +43,6 @@ struct FileId {
 std::mutex g_inputs_mutex;
 std::vector<FileId> g_inputs;
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  return "not a regular file";
-}
 
 // Throws if `path` exists as something an output may not replace: not a
 // regular file, or (after the `exists` check of check_output_path) an input.
@@ -48,7 +50,7 @@ void check_regular(const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) return;  // absent (or a dangling link): a new file
   if (!S_ISREG(st.st_mode))
-    throw Error::in(path, std::string("is ") + kind_of(st.st_mode) +
+    throw Error::in(path, std::string("is ") + file_kind(st.st_mode) +
                               ", not a regular file; refusing to replace it (even with " +
                               field_text("force") + ")");
 }
@@ -192,7 +194,7 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
 void check_regular_input(const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) throw open_error(path, errno);
-  if (!S_ISREG(st.st_mode)) throw Error::in(path, std::string("is ") + kind_of(st.st_mode) + ", expected a regular file");
+  if (!S_ISREG(st.st_mode)) throw Error::in(path, std::string("is ") + file_kind(st.st_mode) + ", expected a regular file");
 }
 
 void note_input(const std::string& path) {

@@ -3,6 +3,7 @@
 // store_server.cpp) and the file store's guarded creation.
 #include "rendezvous_store.hpp"
 
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
@@ -12,11 +13,11 @@
 #include <torch/csrc/distributed/c10d/FileStore.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <thread>
 #include <vector>
 
+#include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"
 #include "store_protocol.hpp"
 
@@ -219,10 +220,22 @@ std::string file_store_record_start(const std::string& key) {
 }
 
 std::string kind_of(const struct stat& st) {
-  if (S_ISDIR(st.st_mode)) return "a folder";
   if (S_ISREG(st.st_mode)) return "a file of " + std::to_string(st.st_size) + " bytes";
   if (S_ISLNK(st.st_mode)) return "a symbolic link";
-  return "not a regular file";
+  return file_kind(st.st_mode);
+}
+
+// True when `path` (found as `st`) is a regular file beginning with
+// `start`; `st` gets what was opened. Never blocks: a FIFO is not opened.
+bool begins_with(const std::string& path, struct stat& st, const std::string& start) {
+  if (!S_ISREG(st.st_mode)) return false;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return false;
+  std::string found(start.size(), '\0');
+  const bool ok = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+                  ::read(fd, found.data(), found.size()) == ssize_t(found.size()) && found == start;
+  ::close(fd);
+  return ok;
 }
 
 }  // namespace
@@ -274,10 +287,7 @@ c10::intrusive_ptr<c10d::Store> file_store(const std::string& path, int rank, in
                     " was not created)");
       std::this_thread::sleep_for(kRetryInterval);
     }
-    const std::string start = file_store_record_start(kFileMarker);
-    std::string found(start.size(), '\0');
-    std::ifstream in(path, std::ios::binary);
-    if (!S_ISREG(st.st_mode) || !in.read(found.data(), std::streamsize(found.size())) || found != start)
+    if (!begins_with(path, st, file_store_record_start(kFileMarker)))
       throw Error("found " + path + " (" + kind_of(st) +
                   "), which is not a rendezvous file made by rank 0: give a path that does not exist");
   }
