@@ -6,6 +6,7 @@
 //   ptnet train --data data.h5 --out model/ --nproc 2                # 2 local ranks (docs/distributed.md)
 //   ptnet train ... --world-size 4 --rank 1 --rendezvous tcp://node1:29500
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -67,6 +68,7 @@ void run(const TrainCli& c) {
   o.rank = r.rank;
   o.rendezvous = r.rendezvous;
   o.dist_timeout_s = r.dist_timeout_s;
+  if (const char* token = std::getenv(kDistTokenVariable)) o.dist_token = token;
   if (o.rank == 0) o.progress = train_progress();  // the other ranks report errors only
   check_options(o);  // before the data is opened
   auto source = open_dataset_source(c.data);

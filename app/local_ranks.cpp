@@ -5,6 +5,7 @@
 #include <netinet/in.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/random.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -62,6 +63,18 @@ int free_port() {
   return ntohs(addr.sin_port);
 }
 
+// A run's token: 16 random bytes (the kernel's), in hex.
+std::string random_token() {
+  unsigned char bytes[16];
+  if (::getrandom(bytes, sizeof bytes, 0) != ssize_t(sizeof bytes))
+    throw Error("train --nproc: no random bytes for the run's token (getrandom: " + std::string(::strerror(errno)) +
+                ")");
+  static const char kHex[] = "0123456789abcdef";
+  std::string hex;
+  for (unsigned char b : bytes) hex += {kHex[b >> 4], kHex[b & 15]};
+  return hex;
+}
+
 // This process's command line, without `--nproc N` / `--nproc=N`.
 std::vector<std::string> own_arguments() {
   const std::string raw = read_text_file("/proc/self/cmdline", 1 << 20);
@@ -99,6 +112,7 @@ void run_local_ranks(int nproc, double grace_s) {
     throw Error("--nproc: must be in 1-" + std::to_string(kMaxRanks) + ", found " + std::to_string(nproc));
   const std::vector<std::string> base = own_arguments();
   const std::string rendezvous = "tcp://127.0.0.1:" + std::to_string(free_port());
+  ::setenv(kDistTokenVariable, random_token().c_str(), 1);  // the ranks inherit it
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction sa {};
     sa.sa_handler = forward_signal;

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "local_ranks.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/strings.hpp"
 
@@ -59,6 +60,7 @@ std::string flag_of(const std::string& command, std::string_view field) {
   };
   static constexpr Renamed kRenamed[] = {
       {"", "dist_timeout_s", "--dist-timeout"},
+      {"train", "dist_token", ptnet::cli::kDistTokenVariable},  // an environment variable
       {"evaluate", "threshold_kpa", "--threshold"},
       {"simulate", "pitch_m", "--pitch"},
       {"render", "sequences", "--sequence"},

@@ -125,7 +125,9 @@ TEST_F(Distributed, KilledRankStopsTheOtherThenResume) {
 
 TEST_F(Distributed, BadRendezvousIsOneLineError) {
   const std::string base = "train --data " + data() + " --out " + (dir_ / "bad").string() + kTrainArgs;
-  auto r = run_ptnet(base + " --world-size 2 --rank 1 --rendezvous tcp://127.0.0.1:1 --dist-timeout 1", scratch("b1"));
+  auto r = ptnet::testing_cli::run_program(
+      PTNET_BINARY, base + " --world-size 2 --rank 1 --rendezvous tcp://127.0.0.1:1 --dist-timeout 1", scratch("b1"),
+      {}, "PTNET_DIST_TOKEN=distributed-smoke-test-token");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("ptnet: error: --rendezvous tcp://127.0.0.1:1: rank 1 could not reach rank 0"),
             std::string::npos) << r.err;

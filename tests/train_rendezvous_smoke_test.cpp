@@ -41,6 +41,9 @@ namespace {
 // rank 0 stayed ~100 s past its timeout.
 constexpr double kStart = 90, kStop = 45;
 
+// The ranks' environment: the run's token (train --nproc makes one itself).
+const std::string kTokenEnv = "PTNET_DIST_TOKEN=smoke-test-token-0123456789";
+
 const std::string kTrainArgs =
     " --preset fast --channels 4,8,8 --hidden 16 --epochs 1 --batch 40 --micro-batch 16"
     " --samples-per-epoch 160 --val-samples 48 --threads 1 --no-contact-threshold";
@@ -135,7 +138,7 @@ std::vector<std::pair<pid_t, std::string>> children_of(pid_t parent) {
 TEST_F(Rendezvous, StoreListensOnTheHostGivenOnly) {
   const int port = free_port();
   const fs::path err = dir_ / "listen.err";
-  const pid_t r0 = spawn_ptnet(train("listen", 0, "tcp://127.0.0.1:" + std::to_string(port), 60), err);
+  const pid_t r0 = spawn_ptnet(train("listen", 0, "tcp://127.0.0.1:" + std::to_string(port), 60), err, kTokenEnv);
   std::vector<std::string> addresses;
   for (int i = 0; i < 10 * kStart && addresses.empty(); ++i) {
     addresses = listening_on(port);
@@ -150,7 +153,7 @@ TEST_F(Rendezvous, StoreListensOnTheHostGivenOnly) {
 TEST_F(Rendezvous, StrangerHoldingAPartialMessageDoesNotHoldRankZero) {
   const int port = free_port();
   const fs::path err = dir_ / "partial.err";
-  const pid_t r0 = spawn_ptnet(train("partial", 0, "tcp://127.0.0.1:" + std::to_string(port), 3), err);
+  const pid_t r0 = spawn_ptnet(train("partial", 0, "tcp://127.0.0.1:" + std::to_string(port), 3), err, kTokenEnv);
   const int stranger = connect_within(port, kStart);
   ASSERT_GE(stranger, 0) << slurp(err);
   ASSERT_EQ(::send(stranger, "\0", 1, MSG_NOSIGNAL), 1);  // the first byte of a message, and no more
@@ -164,7 +167,7 @@ TEST_F(Rendezvous, StrangerHoldingAPartialMessageDoesNotHoldRankZero) {
 TEST_F(Rendezvous, AnnouncedSizesAreNotAllocated) {
   const int port = free_port();
   const fs::path err = dir_ / "announce.err";
-  const pid_t r0 = spawn_ptnet(train("announce", 0, "tcp://127.0.0.1:" + std::to_string(port), 3), err);
+  const pid_t r0 = spawn_ptnet(train("announce", 0, "tcp://127.0.0.1:" + std::to_string(port), 3), err, kTokenEnv);
   // Two strangers announce 1 GiB: one as c10d's TCPStore "set" (a query
   // byte, a u64 key length), one as a message of ptnet's store (a u32
   // length); neither sends it.
@@ -183,6 +186,58 @@ TEST_F(Rendezvous, AnnouncedSizesAreNotAllocated) {
   // Rank 0 itself needs a few hundred MB (LibTorch); had it allocated
   // what was announced, it would hold more than 1 GiB.
   EXPECT_LT(max_rss_kb, 1024L * 1024) << "peak resident memory " << max_rss_kb / 1024 << " MiB";
+}
+
+// A message of the store's protocol: its length, an op byte, the fields.
+std::string store_message(std::uint8_t op, const std::vector<std::string>& fields) {
+  std::string body(1, char(op));
+  const auto u32 = [](std::size_t v) {
+    return std::string{char(v & 0xff), char((v >> 8) & 0xff), char((v >> 16) & 0xff), char((v >> 24) & 0xff)};
+  };
+  for (const auto& f : fields) body += u32(f.size()) + f;
+  return u32(body.size()) + body;
+}
+
+// 50 strangers that greet the store (without the run's token) and write
+// the key by which a rank refuses the run, then 50 idle connections: both
+// ranks still join and train. Before the fix (measured with main's binary
+// at b95ffcd) greeted strangers took the 10 slots for good and one's key
+// ended the run: "distributed: a rank refused to join: a stranger says stop".
+TEST_F(Rendezvous, StrangersCannotKeepTheRanksOutNorEndTheRun) {
+  const int port = free_port();
+  const std::string rdv = "tcp://127.0.0.1:" + std::to_string(port);
+  const fs::path err0 = dir_ / "crowd0.err", err1 = dir_ / "crowd1.err";
+  const pid_t r0 = spawn_ptnet(train("crowd", 0, rdv, 60), err0, kTokenEnv);
+  std::vector<int> idle, strangers;
+  for (int i = 0; i < 50; ++i) {
+    const int fd = connect_within(port, i == 0 ? kStart : 5);
+    const std::string hello = i % 2 ? store_message(1, {"ptnet-store 1"})
+                                    : store_message(1, {"ptnet-store 2", "not-the-token-of-this-run"});
+    const std::string refuse = store_message(2, {"ptnet/refused", "a stranger says stop"});
+    if (fd >= 0) ::send(fd, (hello + refuse).data(), hello.size() + refuse.size(), MSG_NOSIGNAL);
+    strangers.push_back(fd);
+  }
+  for (int i = 0; i < 50; ++i) idle.push_back(connect_within(port, 5));
+  const pid_t r1 = spawn_ptnet(train("crowd", 1, rdv, 60), err1, kTokenEnv);
+  const int s1 = wait_within(r1, kStart), s0 = wait_within(r0, kStart);
+  for (int fd : idle) ::close(fd);
+  for (int fd : strangers) ::close(fd);
+  EXPECT_GE(*std::min_element(idle.begin(), idle.end()), 0) << "rank 0 stopped listening: " << slurp(err0);
+  EXPECT_EQ(s0, 0) << slurp(err0);
+  EXPECT_EQ(s1, 0) << slurp(err1);
+  EXPECT_TRUE(fs::exists(dir_ / "crowd" / "model.pt"));
+}
+
+// The same run without the token, or with a short one: one line naming it.
+TEST_F(Rendezvous, ATcpRendezvousNeedsTheRunsToken) {
+  const std::string rdv = "tcp://127.0.0.1:" + std::to_string(free_port());
+  for (const std::string env : {"PTNET_DIST_TOKEN=", "PTNET_DIST_TOKEN=short"}) {
+    const auto r = run_program(PTNET_BINARY, train("token", 0, rdv, 3), dir_ / "token", {}, "env " + env);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("ptnet: error: PTNET_DIST_TOKEN: ", 0), 0u) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "token"));
 }
 
 TEST_F(Rendezvous, FileRendezvousRefusesAFileItDidNotMake) {

@@ -1,7 +1,7 @@
 // The rendezvous stores (train/rendezvous_store.hpp): the tcp store serves
 // the c10d::Store calls the ranks and Gloo make, and holds against
 // connections that are not ranks (oversized announcements, partial
-// messages, slots held without a greeting, a full store); the file store
+// messages, silent or unauthenticated connections, a full store); the file store
 // is created by rank 0 only and joined only when rank 0 made it.
 #include <gtest/gtest.h>
 #include <arpa/inet.h>
@@ -33,6 +33,7 @@ using std::chrono::seconds;
 namespace {
 
 constexpr auto kTimeout = seconds(30);  // the stores' timeout: generous, nothing here waits for it
+const std::string kToken = "0123456789abcdef-test-token";  // the run's secret
 
 std::vector<uint8_t> bytes(const std::string& s) { return std::vector<uint8_t>(s.begin(), s.end()); }
 std::string text(const std::vector<uint8_t>& v) { return std::string(v.begin(), v.end()); }
@@ -72,9 +73,9 @@ class Store : public ::testing::Test {
 }  // namespace
 
 TEST_F(Store, TcpStoreServesTheCalls) {
-  StoreServer server("127.0.0.1", 0, 5);
-  auto a = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout);
-  auto b = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout);
+  StoreServer server("127.0.0.1", 0, 5, kToken);
+  auto a = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout, kToken);
+  auto b = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout, kToken);
   a->set("k", bytes("v"));
   EXPECT_EQ(text(b->get("k")), "v");
   EXPECT_TRUE(b->check({"k"}));
@@ -96,28 +97,28 @@ TEST_F(Store, TcpStoreServesTheCalls) {
   later.get();
   // ... and gives up after its timeout, bounded by the store's own too.
   EXPECT_THROW(a->wait({"never"}, milliseconds(300)), std::exception);
-  auto quick = tcp_store("127.0.0.1", server.port(), false, 2, milliseconds(500));
+  auto quick = tcp_store("127.0.0.1", server.port(), false, 2, milliseconds(500), kToken);
   EXPECT_THROW(quick->wait({"never"}, seconds(3600)), std::exception) << "the store's timeout bounds every wait";
 }
 
 TEST_F(Store, AnAnnouncedSizeOverTheLimitClosesTheConnection) {
-  StoreServer server("127.0.0.1", 0, 4);
+  StoreServer server("127.0.0.1", 0, 4, kToken);
   const int stranger = connect_to(server.port());
   send_u32(stranger, 1u << 30);  // before the greeting: anything over 64 bytes
   EXPECT_TRUE(closed_by_server(stranger));
   ::close(stranger);
   // A rank's own messages are bounded too, and the store still serves.
-  auto rank = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout);
+  auto rank = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout, kToken);
   EXPECT_THROW(rank->set("big", std::vector<uint8_t>(kMaxStoreMessage, 'x')), Error);
   rank->set("small", bytes("1"));
   EXPECT_EQ(text(rank->get("small")), "1");
 }
 
 TEST_F(Store, APartialMessageHoldsNeitherTheRanksNorTheEnd) {
-  auto server = std::make_unique<StoreServer>("127.0.0.1", 0, 4);
+  auto server = std::make_unique<StoreServer>("127.0.0.1", 0, 4, kToken);
   const int stranger = connect_to(server->port());
   ASSERT_EQ(::send(stranger, "\x05", 1, MSG_NOSIGNAL), 1);  // a quarter of a length, then nothing
-  auto rank = tcp_store("127.0.0.1", server->port(), false, 2, kTimeout);
+  auto rank = tcp_store("127.0.0.1", server->port(), false, 2, kTimeout, kToken);
   rank->set("k", bytes("v"));
   EXPECT_EQ(text(rank->get("k")), "v");
   rank.reset();
@@ -128,8 +129,8 @@ TEST_F(Store, APartialMessageHoldsNeitherTheRanksNorTheEnd) {
 }
 
 TEST_F(Store, AFullStoreRefusesMore) {
-  StoreServer server("127.0.0.1", 0, 4);
-  auto rank = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout);
+  StoreServer server("127.0.0.1", 0, 4, kToken);
+  auto rank = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout, kToken);
   const std::vector<uint8_t> value(kMaxStoreMessage / 2, 'x');
   std::size_t held = 0;
   int i = 0;
@@ -146,16 +147,53 @@ TEST_F(Store, AFullStoreRefusesMore) {
   EXPECT_EQ(text(rank->get("v0")), "small");
 }
 
-TEST_F(Store, ConnectionsWithoutGreetingAreDroppedForTheRanks) {
-  StoreServer server("127.0.0.1", 0, 2);
-  const int s1 = connect_to(server.port()), s2 = connect_to(server.port());  // every slot held, silently
-  std::this_thread::sleep_for(milliseconds(500));
-  // The rank retries until the silent ones are dropped (kGreetingTime).
-  auto rank = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout);
-  rank->set("k", bytes("v"));
-  EXPECT_EQ(text(rank->get("k")), "v");
-  ::close(s1);
-  ::close(s2);
+// A message of the store's protocol (store_protocol.hpp): its length, an
+// op byte, then each field as its length and bytes.
+std::string message(std::uint8_t op, const std::vector<std::string>& fields) {
+  std::string body(1, char(op));
+  const auto u32 = [](std::size_t v) {
+    return std::string{char(v & 0xff), char((v >> 8) & 0xff), char((v >> 16) & 0xff), char((v >> 24) & 0xff)};
+  };
+  for (const auto& f : fields) body += u32(f.size()) + f;
+  return u32(body.size()) + body;
+}
+constexpr std::uint8_t kHello = 1, kSet = 2;
+
+// Strangers on the port, 50 silent and 50 greeting without the run's token
+// (with the store's older greeting, or with another token), cannot keep the
+// ranks out nor write a key: the silent ones wait outside the ranks' slots
+// (the oldest giving way to newcomers), the others are closed at their
+// greeting. Before, 10 silent or greeted strangers took every slot of a
+// 2-rank run for good.
+TEST_F(Store, StrangersCannotKeepTheRanksOutNorWrite) {
+  StoreServer server("127.0.0.1", 0, 2 + 8, kToken);
+  std::vector<int> silent, greeting;
+  for (int i = 0; i < 50; ++i) silent.push_back(connect_to(server.port()));
+  for (int i = 0; i < 50; ++i) {
+    const int fd = connect_to(server.port());
+    const std::string hello = i % 2 ? message(kHello, {"ptnet-store 1"})
+                                    : message(kHello, {"ptnet-store 2", "another run's token, long"});
+    const std::string set = message(kSet, {"ptnet/refused", "a stranger ends the run"});
+    ::send(fd, (hello + set).data(), hello.size() + set.size(), MSG_NOSIGNAL);
+    greeting.push_back(fd);
+  }
+  for (int fd : greeting) EXPECT_TRUE(closed_by_server(fd)) << "a stranger was served";
+  auto zero = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout, kToken);
+  auto one = tcp_store("127.0.0.1", server.port(), false, 2, kTimeout, kToken);
+  zero->set("k", bytes("v"));
+  EXPECT_EQ(text(one->get("k")), "v");
+  EXPECT_FALSE(one->check({"ptnet/refused"}));
+  // A client with another token is refused at its greeting, in one line.
+  try {
+    tcp_store("127.0.0.1", server.port(), false, 2, milliseconds(500), "another run's token, long");
+    ADD_FAILURE() << "another token was served";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("closed the connection at the greeting: another dist_token than rank 0's"),
+              std::string::npos)
+        << e.what();
+  }
+  for (int fd : silent) ::close(fd);
+  for (int fd : greeting) ::close(fd);
 }
 
 TEST_F(Store, FileStoreIsMadeByRankZeroAndJoinedByTheOthers) {

@@ -143,6 +143,11 @@ struct TrainOptions {
   int rank = 0;                     // 0 .. world_size - 1
   std::string rendezvous;           // tcp://HOST:PORT (rank 0 listens) or file://PATH
   double dist_timeout_s = 60;       // bound on joining and on every all-reduce
+  // tcp://: the run's secret, the same on every rank (16-256 printable
+  // characters; `ptnet train` reads it from PTNET_DIST_TOKEN, --nproc makes
+  // one): rank 0's store serves no connection without it. Never written to
+  // the model folder.
+  std::string dist_token;
   // Reports (the library prints nothing itself): after each optimiser step
   // a count {what "train", done/total training windows of the epoch, unit
   // "windows", step/steps = epoch (1-based)/epochs}; the setup, each epoch

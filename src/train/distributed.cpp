@@ -95,12 +95,18 @@ static c10::intrusive_ptr<c10d::ProcessGroupGloo> gloo_group(const c10::intrusiv
 }
 
 // The options of a run of more than one rank.
-static void check_world(const DistOptions& o) {
-  if (o.rendezvous.empty())
-    throw Error(field_text("rendezvous") + ": needed with " + field_text("world_size") + " " +
-                std::to_string(o.world_size));
+static void check_world(const DistOptions& o, const Address& a) {
   if (!(o.timeout_s > 0))
     throw Error(field_text("dist_timeout_s") + ": must be > 0, found " + number_text(o.timeout_s));
+  if (!a.tcp) return;
+  const std::string need = "the same secret on every rank of a tcp:// rendezvous, " + std::to_string(kMinToken) +
+                           "-" + std::to_string(kMaxToken) + " printable characters";
+  if (o.token.empty()) throw Error(field_text("dist_token") + ": needed: " + need);
+  const bool printable =
+      std::all_of(o.token.begin(), o.token.end(), [](char c) { return c > ' ' && c < 0x7f; });
+  if (o.token.size() < kMinToken || o.token.size() > kMaxToken || !printable)
+    throw Error(field_text("dist_token") + ": expected " + need + ", found " + std::to_string(o.token.size()) +
+                (printable ? " characters" : " bytes, not all printable"));
 }
 
 std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
@@ -110,8 +116,11 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
     throw Error(field_text("rank") + ": must be in 0-" + std::to_string(o.world_size - 1) +
                 ", found " + std::to_string(o.rank));
   if (o.world_size == 1) return std::unique_ptr<Communicator>(new Communicator(0, 1, nullptr));
-  check_world(o);
+  if (o.rendezvous.empty())
+    throw Error(field_text("rendezvous") + ": needed with " + field_text("world_size") + " " +
+                std::to_string(o.world_size));
   const Address a = parse_rendezvous(o.rendezvous);
+  check_world(o, a);
   // c10d logs its connection retries and timeouts through glog on stderr;
   // every failure here becomes one Error line instead.
   FLAGS_minloglevel = google::GLOG_FATAL;
@@ -121,7 +130,7 @@ std::unique_ptr<Communicator> Communicator::join(const DistOptions& o) {
   const std::string me = "rank " + std::to_string(o.rank);
   const std::string secs = number_text(o.timeout_s) + " s";
   try {
-    impl->store = a.tcp ? tcp_store(a.host, a.port, o.rank == 0, o.world_size, impl->timeout)
+    impl->store = a.tcp ? tcp_store(a.host, a.port, o.rank == 0, o.world_size, impl->timeout, o.token)
                         : file_store(a.path, o.rank, o.world_size, impl->timeout);
   } catch (const Error& e) {
     throw Error(field_text("rendezvous") + " " + o.rendezvous + ": " + me + " " + e.message(),

@@ -3,7 +3,7 @@
 // and Gloo are included by distributed.cpp (and the stores by
 // rendezvous_store.cpp) only.
 //
-//   Communicator comm = Communicator::join({2, rank, "tcp://10.0.0.1:29500", 60});
+//   Communicator comm = Communicator::join({2, rank, "tcp://10.0.0.1:29500", 60, token});
 //   comm.allreduce(tensors);      // sums in place over the ranks
 //   comm.allreduce(values);       // doubles, the same
 //
@@ -39,6 +39,10 @@ struct DistOptions {
   int rank = 0;            // this process, 0 .. world_size - 1
   std::string rendezvous;  // tcp://HOST:PORT or file://PATH (world_size > 1)
   double timeout_s = 60;   // bound on joining and on every collective
+  // tcp://: the run's secret, the same on every rank (kMinToken to kMaxToken
+  // printable bytes, rendezvous_store.hpp): the store serves no connection
+  // without it, so no one else can use, fill or end the run through it.
+  std::string token;
 };
 
 // What the collectives cost (for the log and docs/distributed.md).

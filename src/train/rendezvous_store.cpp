@@ -31,8 +31,9 @@ constexpr char kFileMarker[] = "ptnet/store";                     // the first k
 
 class TcpStore final : public c10d::Store {
  public:
-  TcpStore(std::unique_ptr<StoreServer> server, std::string host, int port, std::chrono::milliseconds timeout)
-      : c10d::Store(timeout), host_(std::move(host)), port_(port), server_(std::move(server)) {
+  TcpStore(std::unique_ptr<StoreServer> server, std::string host, int port, std::chrono::milliseconds timeout,
+           std::string token)
+      : c10d::Store(timeout), host_(std::move(host)), port_(port), token_(std::move(token)), server_(std::move(server)) {
     connect();
   }
   ~TcpStore() override {
@@ -107,10 +108,11 @@ class TcpStore final : public c10d::Store {
   std::string where() const { return host_ + ":" + std::to_string(port_); }
 
   // Connects and greets, retrying until the timeout (rank 0 may not be
-  // listening yet).
+  // listening yet). A greeting answered by a closed connection (another
+  // token, or every slot taken) is the reason given when none succeeds.
   void connect() {
     const auto deadline = Clock::now() + timeout_;
-    std::string why = "no address";
+    std::string why = "no address", refused;
     for (;;) {
       Addresses a(host_, port_, /*passive=*/false);
       for (const addrinfo* p = a.list; p && fd_ < 0; p = p->ai_next) {
@@ -129,8 +131,15 @@ class TcpStore final : public c10d::Store {
           if (err != 0) throw std::runtime_error(errno_text(err));
           const int one = 1;
           ::setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-          broken_ = false;
-          call(kHello, {kGreeting});
+          broken_ = closed_ = false;
+          try {
+            call(kHello, {kGreeting, token_});
+          } catch (const std::exception&) {
+            if (closed_)
+              refused = "the store closed the connection at the greeting: another " + field_text("dist_token") +
+                        " than rank 0's, or every slot taken";
+            throw;
+          }
         } catch (const std::exception& e) {
           why = e.what();
           ::close(fd_);
@@ -140,7 +149,7 @@ class TcpStore final : public c10d::Store {
       if (fd_ >= 0) return;
       if (Clock::now() > deadline)
         throw Error("could not reach rank 0 at " + where() + " within " + number_text(seconds_of(timeout_)) +
-                    " s (" + why + ")");
+                    " s (" + (refused.empty() ? why : refused) + ")");
       std::this_thread::sleep_for(kRetryInterval);
     }
   }
@@ -185,7 +194,10 @@ class TcpStore final : public c10d::Store {
         await(POLLIN, deadline);
         char buf[65536];
         const ssize_t n = ::recv(fd_, buf, std::min(sizeof buf, want - in.size()), 0);
-        if (n == 0) throw std::runtime_error("the store at " + where() + " closed the connection");
+        if (n == 0) {
+          closed_ = true;
+          throw std::runtime_error("the store at " + where() + " closed the connection");
+        }
         if (n < 0 && errno != EAGAIN && errno != EINTR) throw std::runtime_error(errno_text());
         if (n > 0) in.append(buf, std::size_t(n));
         if (want == 4 && in.size() == 4) {
@@ -205,10 +217,12 @@ class TcpStore final : public c10d::Store {
 
   std::string host_;
   int port_ = 0;
+  std::string token_;                    // the run's, sent with the greeting
   std::unique_ptr<StoreServer> server_;  // rank 0 only
   std::mutex mutex_;
   int fd_ = -1;
   bool broken_ = false;
+  bool closed_ = false;  // the store closed the connection (the last call's answer)
 };
 
 // The bytes c10d::FileStore writes first for key `key` (its records: a
@@ -241,12 +255,12 @@ bool begins_with(const std::string& path, struct stat& st, const std::string& st
 }  // namespace
 
 c10::intrusive_ptr<c10d::Store> tcp_store(const std::string& host, int port, bool serve, int world_size,
-                                         std::chrono::milliseconds timeout) {
-  // Every rank holds one connection; a few more (a rank restarting its
-  // connection, a probe) are served, beyond that new ones are closed.
+                                         std::chrono::milliseconds timeout, const std::string& token) {
+  // Every rank holds one connection; a few more greeted ones (a rank
+  // restarting its connection) are served, beyond that they are closed.
   std::unique_ptr<StoreServer> server;
-  if (serve) server = std::make_unique<StoreServer>(host, port, world_size + 8);
-  return c10::make_intrusive<TcpStore>(std::move(server), host, port, timeout);
+  if (serve) server = std::make_unique<StoreServer>(host, port, world_size + 8, token);
+  return c10::make_intrusive<TcpStore>(std::move(server), host, port, timeout, token);
 }
 
 c10::intrusive_ptr<c10d::Store> file_store(const std::string& path, int rank, int world_size,

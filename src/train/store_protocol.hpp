@@ -6,7 +6,9 @@
 // bytes: an op byte, then fields, each a u32 length and its bytes (an
 // integer is a field of 8 bytes, little-endian). A reply is a message whose
 // first byte is 0 (done, then its fields) or 1 (refused, then the reason).
-// A connection's first message is kHello with the greeting.
+// A connection's first message is kHello with the greeting and the run's
+// token (DistOptions::token): a connection that sends anything else, or
+// another token, is closed before it may do anything.
 #pragma once
 
 #include <netdb.h>
@@ -25,8 +27,15 @@
 namespace ptnet::store_protocol {
 
 using Clock = std::chrono::steady_clock;
-inline constexpr char kGreeting[] = "ptnet-store 1";
-inline constexpr std::size_t kGreetingMessage = 64;  // largest message before the greeting
+inline constexpr char kGreeting[] = "ptnet-store 2";
+inline constexpr std::size_t kGreetingMessage = 512;  // largest message before the greeting (it holds the token)
+
+// Equal secrets, compared in a time that does not depend on where they differ.
+inline bool same_secret(std::string_view a, std::string_view b) {
+  unsigned char differ = a.size() != b.size();
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) differ |= std::uint8_t(a[i] ^ b[i]);
+  return differ == 0;
+}
 
 enum Op : std::uint8_t { kHello = 1, kSet, kGet, kAdd, kCheck, kDelete, kNumKeys, kCompareSet };
 

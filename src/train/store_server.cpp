@@ -31,12 +31,16 @@ struct StoreServer::Impl {
   struct Client {
     int fd = -1;
     Clock::time_point opened;
+    std::uint64_t tick = 0;  // the server's tick when accepted
     bool greeted = false;
     std::string in;        // the message being read: its length, then its body
     std::string out;       // the reply being written
     std::size_t sent = 0;  // bytes of `out` written
   };
   int listen_fd = -1, port = 0, max_clients = 0;
+  std::string token;      // the run's: a connection's greeting must hold it
+  std::uint64_t tick = 0;  // serve_once calls
+  int greeted = 0;         // clients greeted: the run's ranks
   std::atomic<bool> stop{false};
   std::thread thread;
   std::vector<Client> clients;
@@ -45,6 +49,7 @@ struct StoreServer::Impl {
 
   void loop();
   void serve_once();
+  void accept_new(Clock::time_point now);
   bool read_from(Client& c);  // false: drop the connection
   bool write_to(Client& c);
   // The reply to one message, or "" to drop the connection.
@@ -54,8 +59,10 @@ struct StoreServer::Impl {
   bool store(const std::string& key, std::string value);  // false: over kMaxStoreBytes
 };
 
-StoreServer::StoreServer(const std::string& host, int port, int max_clients) : impl_(std::make_unique<Impl>()) {
+StoreServer::StoreServer(const std::string& host, int port, int max_clients, const std::string& token)
+    : impl_(std::make_unique<Impl>()) {
   impl_->max_clients = max_clients;
+  impl_->token = token;
   Addresses a(host, port, /*passive=*/true);
   std::string why = "no address";
   for (const addrinfo* p = a.list; p && impl_->listen_fd < 0; p = p->ai_next) {
@@ -115,24 +122,44 @@ void StoreServer::Impl::serve_once() {
     bool keep = true;
     if (ev & POLLOUT) keep = write_to(c);
     else if (ev & (POLLIN | POLLHUP | POLLERR)) keep = read_from(c);
-    if (keep && !c.greeted && now - c.opened > kGreetingTime) keep = false;  // a stranger holding a slot
-    if (keep) kept.push_back(std::move(c));
-    else ::close(c.fd);
+    if (keep && !c.greeted && now - c.opened > kGreetingTime) keep = false;  // silent for too long
+    if (keep) {
+      kept.push_back(std::move(c));
+    } else {
+      ::close(c.fd);
+      greeted -= c.greeted;
+    }
   }
   clients = std::move(kept);
-  if (fds[0].revents & POLLIN)
-    for (int fd; (fd = ::accept4(listen_fd, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC)) >= 0;) {
-      if (int(clients.size()) >= max_clients) {
+  if (fds[0].revents & POLLIN) accept_new(now);
+  ++tick;
+}
+
+// New connections wait, ungreeted, among at most kMaxPending: beyond them
+// the oldest one accepted in an earlier tick (whose greeting, had it sent
+// one, has been read) is closed for the new one; with none such the new one
+// is closed. Strangers keeping connections open cannot keep a rank out:
+// its greeting follows its connection at once.
+void StoreServer::Impl::accept_new(Clock::time_point now) {
+  for (int fd; (fd = ::accept4(listen_fd, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC)) >= 0;) {
+    if (int(clients.size()) - greeted >= kMaxPending) {
+      const auto oldest = std::find_if(clients.begin(), clients.end(),
+                                       [&](const Client& c) { return !c.greeted && c.tick < tick; });
+      if (oldest == clients.end()) {
         ::close(fd);
         continue;
       }
-      const int one = 1;
-      ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-      Client c;
-      c.fd = fd;
-      c.opened = now;
-      clients.push_back(std::move(c));
+      ::close(oldest->fd);
+      clients.erase(oldest);
     }
+    const int one = 1;
+    ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    Client c;
+    c.fd = fd;
+    c.opened = now;
+    c.tick = tick;
+    clients.push_back(std::move(c));
+  }
 }
 
 bool StoreServer::Impl::read_from(Client& c) {
@@ -185,8 +212,11 @@ std::string StoreServer::Impl::answer(Client& c, std::string_view message) {
   Fields f{message.substr(1)};
   std::string done(1, '\0');
   if (!c.greeted) {
-    if (op != kHello || f.next() != kGreeting || !f.complete()) return {};
+    const std::string greeting = op == kHello ? f.next() : std::string(), token = f.next();
+    if (op != kHello || greeting != kGreeting || !f.complete() || !same_secret(token, this->token)) return {};
+    if (greeted >= max_clients) return {};  // every slot taken by the run's own ranks
     c.greeted = true;
+    ++greeted;
     return framed(done);
   }
   switch (op) {

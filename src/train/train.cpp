@@ -259,7 +259,7 @@ TrainResult train(const PressureSource& source, const std::string& out_dir, cons
   check_options(o);
   const auto t_start = std::chrono::steady_clock::now();
   // Joins the other ranks first: a bad rendezvous fails before any work.
-  const auto comm = Communicator::join({o.world_size, o.rank, o.rendezvous, o.dist_timeout_s});
+  const auto comm = Communicator::join({o.world_size, o.rank, o.rendezvous, o.dist_timeout_s, o.dist_token});
   TrainRun run(source, out_dir, o, *comm);
   if (o.threads > 0) torch::set_num_threads(o.threads);
   plan_model(run);
