@@ -129,6 +129,39 @@ TEST_F(SimulateCli, EveryCommonFpsOnTheWholeCorpus) {
   }
 }
 
+// A marker trial at 100 Hz (the real treadmill walk, its 151 frames
+// relabelled 100 Hz: DataRate and the Time column) at every common rate.
+TEST_F(SimulateCli, EveryCommonFpsOnAMarkerTrialAt100Hz) {
+  const fs::path trial = fs::path(PTNET_SHARED_GAIT) / "walk_s01.trc";
+  if (!fs::exists(trial)) GTEST_SKIP() << "../shared/real-gait not found";
+  std::istringstream in(slurp(trial));
+  std::string text, line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (n == 3) {
+      line = "100.00\t100.00\t151\t41\tmm\t100.00\t1\t151";
+    } else if (n >= 6 && !line.empty()) {
+      const auto a = line.find('\t'), b = line.find('\t', a + 1);
+      const int frame = std::stoi(line.substr(0, a));
+      char time[32];
+      std::snprintf(time, sizeof time, "%.6f", (frame - 1) / 100.0);
+      line = line.substr(0, a + 1) + time + line.substr(b);
+    }
+    text += line + "\n";
+  }
+  spit(dir_ / "walk100.trc", text);
+  for (const int fps : {25, 30, 50, 60, 100, 120}) {
+    const std::string out = "walk100_" + std::to_string(fps) + ".h5";
+    RunResult r = run("-q simulate --motions walk100.trc --bodies bodies.csv --no-floor --threads 2 --fps " +
+                      std::to_string(fps) + " --out " + out);
+    ASSERT_EQ(r.status, 0) << fps << " fps: " << r.err;
+    r = run("info " + out + " --json");
+    EXPECT_NE(r.out.find("\"fps\": " + std::to_string(fps)), std::string::npos) << r.out.substr(0, 400);
+    // 151 frames at 100 Hz: 1.5 s, so 1.5 F frames + 1 (after a leading T-pose? none in a marker file).
+    EXPECT_NE(r.out.find("\"frames\": " + std::to_string(int(1.5 * fps) + 1)), std::string::npos)
+        << fps << " fps: " << r.out.substr(0, 2000);
+  }
+}
+
 TEST_F(SimulateCli, BadInputIsOneLineExitOneAndNoFile) {
   const std::vector<std::string> base{"bodies.csv"};
   expect_error("--motions missing.bvh --bodies bodies.csv --out o.h5", {"missing.bvh", "no such file"}, base);

@@ -14,7 +14,7 @@
 namespace ptnet {
 
 Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
-  if (!std::isfinite(options.fps) || options.fps > 0) check_range("fps", options.fps, kReadFpsRange);
+  detail::check_read_fps(options);
   if (source.frames() < 1) throw Error::in(source.source, "no frames");
   const double scale = options.metres_per_unit > 0
                            ? options.metres_per_unit
@@ -28,11 +28,8 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
     trimmed.values.erase(trimmed.values.begin(), trimmed.values.begin() + source.channel_count);
     bvh = &trimmed;
   }
-  // A file within kSameRate of the rate asked for is recorded at it: its
-  // Frame Time is that rate rounded to a few digits (MotionOptions::fps).
-  constexpr double kSameRate = 1e-4;
   Bvh resampled;
-  if (options.fps > 0 && std::abs(options.fps - bvh->fps()) > kSameRate * options.fps) {
+  if (options.fps > 0 && !detail::same_rate(bvh->fps(), options.fps)) {
     resampled = resample(*bvh, options.fps);
     bvh = &resampled;
   }
@@ -62,6 +59,10 @@ Motion load_motion(const std::string& path, const MotionOptions& options) {
 }
 
 namespace detail {
+
+void check_read_fps(const MotionOptions& options) {
+  if (!std::isfinite(options.fps) || options.fps > 0) check_range("fps", options.fps, kReadFpsRange);
+}
 
 void ground(Motion& m) {
   if (m.frames.empty()) return;

@@ -271,6 +271,7 @@ std::array<double, 2> static_foot_pitch(const std::string& path, const MarkerMap
 }  // namespace
 
 Motion motion_from_trc(const Trc& input, const MotionOptions& options, MarkerReport* report) {
+  detail::check_read_fps(options);
   if (input.frames() < 2) throw Error::in(input.source, "expected at least 2 frames, found " + std::to_string(input.frames()));
   check_range("max_gap_s", options.max_gap_s, Range{0, 10});
   Trc trc = input;
@@ -300,7 +301,8 @@ Motion motion_from_trc(const Trc& input, const MotionOptions& options, MarkerRep
     methods.push_back("toe joints: pitched to the canonical flat foot of the static trial (left " +
                       fixed_text(pitch[0] * 180 / M_PI, 1) + ", right " + fixed_text(pitch[1] * 180 / M_PI, 1) +
                       " degrees)");
-  if (options.fps > 0 && std::abs(options.fps - m.fps) > 1e-9 * options.fps) m = detail::resample_linear(m, options.fps);
+  if (options.fps > 0 && !detail::same_rate(m.fps, options.fps)) m = detail::resample_linear(m, options.fps);
+  if (options.fps > 0) m.fps = options.fps;
   detail::ground(m);
   Eigen::Vector2d belt = Eigen::Vector2d::Zero();
   if (options.remove_belt) {
