@@ -45,8 +45,14 @@ struct MotionsCli {
 
 std::vector<Category> parse_categories(const std::string& list) {
   std::vector<Category> out;
-  for (const std::string& item : split_list(list)) out.push_back(parse_category(item));
+  std::vector<std::string> names;
+  for (const std::string& item : split_list(list)) {
+    out.push_back(parse_category(item));
+    names.push_back(category_name(out.back()));
+  }
   if (out.empty()) throw Error("--categories: expected a comma-separated list of categories, found '" + list + "'");
+  if (const std::string twice = first_repeat(names); !twice.empty())
+    throw Error("--categories: " + twice + " given twice");
   return out;
 }
 

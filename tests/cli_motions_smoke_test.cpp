@@ -80,6 +80,15 @@ TEST_F(CliMotions, UsageErrorsExitTwo) {
   EXPECT_FALSE(fs::exists(dir_ / "a.bvh"));
 }
 
+// A category twice would write its clips twice: refused
+// before any clip.
+TEST_F(CliMotions, ACategoryTwiceIsRefused) {
+  const RunResult r = run("motions --performers 1 --categories walking,acting,walking --seconds 2 --out-dir twice", dir_);
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(r.err, "ptnet: error: --categories: walking given twice\n");
+  EXPECT_FALSE(fs::exists(dir_ / "twice" / "clips.csv"));
+}
+
 TEST_F(CliMotions, SetModeWritesEveryClipAndAManifest) {
   const RunResult r = run("motions --performers 2 --takes 2 --categories walking,acting --seconds 2 --out-dir set", dir_);
   ASSERT_EQ(r.code, 0) << r.err;

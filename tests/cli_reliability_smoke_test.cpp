@@ -72,6 +72,32 @@ TEST_F(Reliability, UsageErrorsAreOneLineWithStatus2) {
   expect_usage_error("train --data", "--data");
 }
 
+// A list option with an item twice (after its normalisation: lower case,
+// a speed's label) is one line and exit 1 before any work; before, har-bench
+// scored xsmall twice, simulate simulated every sequence before "added
+// twice", render drew a sequence or frame twice.
+TEST_F(Reliability, ListsWithAnItemTwiceAreRefusedBeforeAnyWork) {
+  const std::string sim = "-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies bodies.csv ";
+  ASSERT_EQ(run(sim + "--out lists.h5").status, 0);
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"har-bench --deployment-bands xsmall,xlarge,xsmall --out hb",
+            "har-bench: deployment band 'xsmall' given twice"},
+           {"har-bench --syntheses copy,body-scale,COPY --out hb", "har-bench: training source 'copy' given twice"},
+           {sim + "--speeds 0.8,0.8000001 --out speeds.h5",
+            "--speeds: 0.8000001 has more digits than its label _x0.8 shows (at most 6 significant digits)"},
+           {sim + "--speeds 1.000001 --out speeds.h5",
+            "--speeds: 1.000001 has more digits than its label _x1 shows (at most 6 significant digits)"},
+           {"render lists.h5 -s p1_walking_t1__b1 -s p1_walking_t1__b1 --out twice.png",
+            "render: --sequence: 'p1_walking_t1__b1' given twice"},
+           {"render lists.h5 -s p1_walking_t1__b1 --frame-list 0,5,0 --out twice.png",
+            "--frame-list: frame 0 given twice"}}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
+    EXPECT_EQ(r.err, "ptnet: error: " + message + "\n") << args;
+  }
+  for (const char* out : {"hb", "speeds.h5", "twice.png"}) EXPECT_FALSE(fs::exists(dir_ / out)) << out;
+}
+
 TEST_F(Reliability, SimulateNeverReplacesItsBodiesCsv) {
   const std::string before = slurp(dir_ / "bodies.csv");
   const RunResult r = run("-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies bodies.csv "

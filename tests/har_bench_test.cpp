@@ -172,6 +172,12 @@ TEST(HarBenchOptions, BadSourcesAndBandsAreRefusedBeforeAnyWork) {
   EXPECT_NE(error_of([&] { run_bench(o, {}); }).find("band mid is not a deployment band"), std::string::npos);
   o.deployment_bands = {"xsmall", "all"};  // all covers mid: not outside the recorded population
   EXPECT_NE(error_of([&] { run_bench(o, {}); }).find("band all is not a deployment band"), std::string::npos);
+  // A list item twice would be scored twice (before: xsmall,xlarge,xsmall ran xsmall twice).
+  o.deployment_bands = {"xsmall", "xlarge", "xsmall"};
+  EXPECT_EQ(error_of([&] { run_bench(o, {}); }), "har-bench: deployment band 'xsmall' given twice");
+  o = small_options();
+  o.syntheses = {"copy", "body-scale", "Copy"};
+  EXPECT_EQ(error_of([&] { run_bench(o, {}); }), "har-bench: training source 'copy' given twice");
 }
 
 TEST(HarBenchTrainingSet, HoldsOnlyTrainingPartsAndIsCheckedForIt) {

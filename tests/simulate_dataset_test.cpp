@@ -171,6 +171,33 @@ TEST(ClipsAtSpeeds, EveryClipAtEverySpeedAndOneLineErrors) {
   EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {}); }), "speeds: expected at least one speed");
   EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {0.1}); }), "speeds: 0.1 is not in [0.25, 4]");
   EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {1, 1}); }), "speeds: 1 given twice");
+  // A speed is its label: before, 0.8 and 0.8000001 were both _x0.8 (refused
+  // as "added twice" once simulated), 1.000001 was _x1.
+  EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {0.8, 0.8000001}); }),
+            "speeds: 0.8000001 has more digits than its label _x0.8 shows (at most 6 significant digits)");
+  EXPECT_EQ(error_of([&] { clips_at_speeds(clips, {1.000001}); }),
+            "speeds: 1.000001 has more digits than its label _x1 shows (at most 6 significant digits)");
+  EXPECT_EQ(clips_at_speeds(clips, {0.333333})[0].meta.motion_id, clips[0].meta.motion_id + "_x0.333333");
+}
+
+// A clip a_x0.8.bvh beside a.bvh played at 0.8: one motion id for two
+// clips, refused before any clip is read (before: "added twice" once every
+// sequence was simulated).
+TEST_F(SimulateDataset, ClipIdsAreUniqueBeforeAnyWork) {
+  const std::string bvh = slurp(std::string(PTNET_TEST_DATA) + "/bvh/tpose_cmu_small.bvh");
+  spit(dir_ / "a.bvh", bvh);
+  spit(dir_ / "a_x0.8.bvh", bvh);
+  const auto clips = clips_at_speeds(clips_from_files({(dir_ / "a.bvh").string(), (dir_ / "a_x0.8.bvh").string()},
+                                                      "", {}),
+                                     {1, 0.8});
+  const std::string out = (dir_ / "x.h5").string();
+  EXPECT_EQ(error_of([&] { simulate_dataset(clips, kBodies, out, {}); }),
+            (dir_ / "a_x0.8.bvh").string() + ": motion id 'a_x0.8' is also that of " + (dir_ / "a.bvh").string() +
+                " x0.8: every clip needs its own");
+  EXPECT_FALSE(fs::exists(out));
+  BodySpec b = kBodies[0];
+  EXPECT_EQ(error_of([&] { simulate_dataset(clips_from_files({(dir_ / "a.bvh").string()}, "", {}), {b, b}, out, {}); }),
+            "simulate: body id 'f1' given twice");
 }
 
 TEST(SimulateDatasetCategories, FromNames) {

@@ -55,6 +55,13 @@ TEST(Viz, FigureFramesAndVmax) {
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "frame 10 outside the sequence (10 frames: 0-9)");
   }
+  o.frame_list = {3, 9, 3};  // before: frame 3 drawn twice
+  try {
+    figure_frames(o, 10, 6);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "frame_list: frame 3 given twice");
+  }
   PressureSequence s(MatSpec{}, 2, 30);
   s.at(1, 3, 3) = 287;
   EXPECT_EQ(figure_vmax({FigurePanel{"a", "", &s}}, FigureOptions{}), 300);

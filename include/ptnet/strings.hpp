@@ -37,6 +37,10 @@ bool parse_number(std::string_view text, double& value);
 bool parse_integer(std::string_view text, std::int64_t& value);
 // The same within [lo, hi].
 bool parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std::int64_t& value);
+// The first item equal to an earlier one, "" when all differ: a list
+// option given twice the same value (compare normalised forms, as the
+// option reads them: lower case, a speed's label). Lists are short.
+std::string first_repeat(const std::vector<std::string>& items);
 // A message as one line (how the CLI and the Python module show an error):
 // line breaks become "; ", other control bytes are escaped (\x1b), trailing
 // blanks and semicolons dropped.

@@ -113,4 +113,11 @@ std::string one_line(std::string_view text) {
   return out;
 }
 
+std::string first_repeat(const std::vector<std::string>& items) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (items[j] == items[i]) return items[i];
+  return "";
+}
+
 }  // namespace ptnet

@@ -231,6 +231,10 @@ std::vector<ClipSource> clips_at_speeds(const std::vector<ClipSource>& clips, co
   if (speeds.empty()) throw Error(field_text("speeds") + ": expected at least one speed");
   for (std::size_t i = 0; i < speeds.size(); ++i) {
     check_range("speeds", speeds[i], kClipSpeedRange);
+    // A speed is what its label says: 1.000001 would be "_x1", 0.8000001 "_x0.8" beside 0.8.
+    if (std::strtod(number_text(speeds[i]).c_str(), nullptr) != speeds[i])
+      throw Error(field_text("speeds") + ": " + precise_text(speeds[i]) + " has more digits than its label _x" +
+                  number_text(speeds[i]) + " shows (at most 6 significant digits)");
     for (std::size_t j = 0; j < i; ++j)
       if (speeds[j] == speeds[i]) throw Error(field_text("speeds") + ": " + number_text(speeds[i]) + " given twice");
   }

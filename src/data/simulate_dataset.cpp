@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <cstdio>
 #include <future>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 #include <nlohmann/json.hpp>
 
@@ -51,6 +53,34 @@ constexpr std::uint64_t kMaxSequences = 10000000;  // sequences of one dataset
 
 // ---- the phases of run(), in order
 
+// Every sequence name once, known before any work: each clip's motion id
+// and each body's id once (a clip a_x0.8.bvh beside a.bvh played at 0.8),
+// and no "<motion_id>__<body_id>" made twice by ids that hold "__".
+void check_names(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies) {
+  const auto where = [](const ClipSource& c) { return c.meta.source; };
+  std::map<std::string, const ClipSource*> ids;
+  bool split = false;  // an id holding "__": names may collide
+  for (const ClipSource& c : clips) {
+    const auto [it, fresh] = ids.emplace(c.meta.motion_id, &c);
+    if (!fresh)
+      throw Error::in(where(c), "motion id " + escaped(c.meta.motion_id) + " is also that of " + where(*it->second) +
+                                    ": every clip needs its own");
+    split = split || c.meta.motion_id.find("__") != std::string::npos;
+  }
+  std::set<std::string> body_ids;
+  for (const BodySpec& b : bodies) {
+    if (!body_ids.insert(b.id).second) throw Error("simulate: body id " + escaped(b.id) + " given twice");
+    split = split || b.id.find("__") != std::string::npos;
+  }
+  if (!split) return;
+  std::set<std::string> names;
+  for (const ClipSource& c : clips)
+    for (const BodySpec& b : bodies)
+      if (!names.insert(c.meta.motion_id + "__" + b.id).second)
+        throw Error::in(where(c), "sequence name " + escaped(c.meta.motion_id + "__" + b.id) +
+                                      " made twice (motion and body ids holding \"__\")");
+}
+
 // Threads to use; throws Error for impossible options, and for an output
 // that may not be written, before any work.
 int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies, const std::string& out_path,
@@ -58,6 +88,7 @@ int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>&
   if (clips.empty()) throw Error("simulate: no clips to simulate");
   if (bodies.empty()) throw Error("simulate: no bodies to simulate on");
   check_range("fps", options.fps, kFpsRange);
+  check_names(clips, bodies);
   check_output_path(out_path, options.force);  // before any work
   if (options.threads < 0 || options.threads > max_threads())
     throw Error("simulate: threads must be in 0-" + std::to_string(max_threads()) + ", found " +

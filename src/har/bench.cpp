@@ -48,6 +48,13 @@ void check_options(const BenchOptions& o, const TransferFn& transfer) {
   if (o.recorded_bodies < 1 || o.bodies_per_band < 1)
     throw Error("har-bench: need at least 1 recorded body and 1 body per deployment band");
   if (o.deployment_bands.empty()) throw Error("har-bench: no deployment band given");
+  for (const auto& [list, what] : {std::pair{&o.deployment_bands, "deployment band"},
+                                   std::pair{&o.syntheses, "training source"}, std::pair{&o.activities, "activity"}}) {
+    std::vector<std::string> keys;
+    for (const std::string& item : *list) keys.push_back(lower(item));
+    if (const std::string twice = first_repeat(keys); !twice.empty())
+      throw Error("har-bench: " + std::string(what) + " " + escaped(twice) + " given twice");
+  }
   const std::vector<std::string> deployment = deployment_band_names();
   for (const std::string& b : o.deployment_bands) {
     body_band(b);
@@ -55,12 +62,9 @@ void check_options(const BenchOptions& o, const TransferFn& transfer) {
       throw Error("har-bench: band " + b + " is not a deployment band (mid is the recorded population, all the "
                   "transfer model's training bodies; deployment bands: " + join(deployment) + ")");
   }
-  std::vector<std::string> seen;
   for (const std::string& s : o.syntheses) {
     if (std::find(known_syntheses().begin(), known_syntheses().end(), s) == known_syntheses().end())
       throw Error("har-bench: unknown training source '" + s + "' (sources: " + join(known_syntheses()) + ")");
-    if (std::count(seen.begin(), seen.end(), s)) throw Error("har-bench: training source '" + s + "' given twice");
-    seen.push_back(s);
     if (is_transfer_source(s) && !transfer)
       throw Error("har-bench: source '" + s + "' needs a transfer model");
   }

@@ -144,6 +144,8 @@ std::vector<int> figure_frames(const FigureOptions& opt, int frames, int default
       if (f < 0 || f >= frames)
         throw Error("frame " + std::to_string(f) + " outside the sequence (" + std::to_string(frames) +
                     " frames: 0-" + std::to_string(frames - 1) + ")");
+      if (std::find(out.begin(), out.end(), f) != out.end())
+        throw Error(field_text("frame_list") + ": frame " + std::to_string(f) + " given twice");
       out.push_back(f);
     }
     return out;
@@ -326,6 +328,8 @@ void render_figure(const Dataset& d, const std::vector<std::string>& names, cons
   if (names.empty())
     throw Error("render: " + field_text("sequences") +
                 ": expected at least one sequence name, found none");
+  if (const std::string twice = first_repeat(names); !twice.empty())
+    throw Error("render: " + field_text("sequences") + ": " + escaped(twice) + " given twice");
   const std::string ext = lower(std::filesystem::path(out).extension().string());
   if (ext != ".png" && ext != ".gif")
     throw Error::in(out, "unknown figure type '" + ext + "', expected .png or .gif");
