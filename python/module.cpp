@@ -70,7 +70,7 @@ PressureSequence pressure_sequence(const FloatArray& kpa, const MatSpec& mat, do
   seq.mat = m;
   seq.fps = fps;
   seq.kpa.assign(kpa.data(), kpa.data() + kpa.size());
-  check_finite(seq.kpa.data(), seq.kpa.size(), m.cells(), what, "pressure");
+  check_finite(seq.kpa.data(), seq.kpa.size(), m.cells(), what, "");
   return seq;
 }
 

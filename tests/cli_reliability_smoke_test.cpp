@@ -98,6 +98,19 @@ TEST_F(Reliability, ListsWithAnItemTwiceAreRefusedBeforeAnyWork) {
   for (const char* out : {"hb", "speeds.h5", "twice.png"}) EXPECT_FALSE(fs::exists(dir_ / out)) << out;
 }
 
+// Readings no mat makes (tests/data/pressure_range): before, 3e38 kPa was
+// transferred into all zeros and -0.5 kPa passed, both with exit 0.
+TEST_F(Reliability, PressureOutsideThePhysicalRangeIsRefused) {
+  for (const auto& [file, value] : {std::pair{"pressure_3e38.npy", "3e+38"}, std::pair{"pressure_negative.npy", "-0.5"}}) {
+    const std::string in = std::string(PTNET_TEST_DATA) + "/pressure_range/" + file;
+    const RunResult r = run("-q transfer --model model --in " + in + " --source female,165,60 --target male,185,90 "
+                            "--out absurd.npy");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(r.err, "ptnet: error: " + in + ": " + value + " kPa in frame 2, outside [0, 1000000] kPa\n");
+    EXPECT_FALSE(fs::exists(dir_ / "absurd.npy"));
+  }
+}
+
 TEST_F(Reliability, SimulateNeverReplacesItsBodiesCsv) {
   const std::string before = slurp(dir_ / "bodies.csv");
   const RunResult r = run("-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies bodies.csv "

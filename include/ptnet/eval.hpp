@@ -53,7 +53,9 @@ struct SequenceMetrics {
   double contact_iou = 0;
 };
 
-// Raw metrics on flat arrays of equal length n (kPa).
+// Raw metrics on flat arrays of equal length n (kPa). A NaN or infinity in
+// either is an Error ("rmse: predicted: non-finite value (NaN or Inf) at
+// index 5"), never a NaN metric.
 double rmse(const float* predicted, const float* truth, std::size_t n);
 double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa);
 double contact_iou(const float* predicted, const float* truth, std::size_t n,

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "ptnet/error.hpp"
 #include "ptnet/paper.hpp"
 
 namespace ptnet {
@@ -65,9 +66,20 @@ std::size_t first_non_finite(const float* kpa, std::size_t n);
 
 // Every input format rejects NaN and infinite readings alike: throws Error
 // "FILE: WHAT: non-finite value (NaN or Inf) in frame T" (T counted from
-// `first_frame`). kpa: [n / cells frames, cells].
+// `first_frame`; "FILE: non-finite ..." with `what` empty). kpa: [n / cells
+// frames, cells].
 void check_finite(const float* kpa, std::size_t n, int cells, const std::string& file, const std::string& what,
                   std::size_t first_frame = 0);
+
+// What a pressure mat can read, kPa: not below zero, and far below what
+// would crush bone (human plantar pressure peaks at a few hundred kPa; the
+// sensor model saturates at most here, SimSettingsRanges).
+inline constexpr Range kPressureRangeKpa{0, 1e6};
+// check_finite, then every reading in kPressureRangeKpa: Error "FILE: WHAT:
+// -0.5 kPa in frame T, outside [0, 1000000] kPa". The readers of pressure
+// (datasets, .npy, imports, live frames) and transfer's input check it.
+void check_pressure(const float* kpa, std::size_t n, int cells, const std::string& file, const std::string& what,
+                    std::size_t first_frame = 0);
 
 // Body-scale alignment of pressure maps from one body to another, for
 // retargeted motion: the same motion on a body `scale` times as tall lands

@@ -128,6 +128,26 @@ class ErrorTest(unittest.TestCase):
             self.assertRaisesLine(ValueError, "generate_motion: height_cm: expected 0 (the performer's own) or a "
                                   f"height in [50, 250] cm, found {height:g}", ptnet.generate_motion, seconds=1,
                                   height_cm=height)
+        # Issue 40, defect 7: readings no mat makes were transferred (3e38 kPa
+        # to zeros, negative kPa silently); NaN made rmse NaN; fps=nan kept
+        # the file's rate; a message said "pressure: pressure: ...".
+        for value, text in ((3e38, "3e+38"), (-0.5, "-0.5")):
+            bad = seq.copy()
+            bad[2, 1, 1] = value
+            self.assertRaisesLine(ValueError, f"transfer: the source sequence: {text} kPa in frame 2, outside "
+                                  "[0, 1000000] kPa", net.run, bad, source=("female", 165, 60),
+                                  target=("male", 180, 80))
+        bad = seq.copy()
+        bad[3, 1, 1] = nan
+        self.assertRaisesLine(ValueError, "pressure: non-finite value (NaN or Inf) in frame 3", net.run, bad,
+                              source=("female", 165, 60), target=("male", 180, 80))
+        self.assertRaisesLine(ValueError, "rmse: predicted: non-finite value (NaN or Inf) at index 1",
+                              ptnet.rmse, np.array([0, nan], np.float32), np.zeros(2, np.float32))
+        self.assertRaisesLine(ValueError, "binary_r2: truth: non-finite value (NaN or Inf) at index 0",
+                              ptnet.binary_r2, np.zeros(2, np.float32), np.array([float("inf"), 0], np.float32))
+        bvh = os.path.join(TEST_DATA, "bvh", "tpose_cmu_small.bvh")
+        for fps in (nan, float("inf")):
+            self.assertRaisesLine(ValueError, f"fps: {fps:g} is not in (0, 4000]", ptnet.read_bvh, bvh, fps=fps)
         # The good values still work.
         self.assertEqual(ptnet.compare(seq, seq)["binary_r2"], 1.0)
         self.assertEqual(len(ptnet.generate_motion(seconds=1, height_cm=0)), 30)

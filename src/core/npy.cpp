@@ -182,7 +182,7 @@ PressureSequence read_npy_sequence(const std::string& path, const MatSpec& mat, 
   s.mat = mat;
   s.fps = fps;
   s.kpa = std::move(a.data);
-  check_finite(s.kpa.data(), s.kpa.size(), mat.cells(), path, "");
+  check_pressure(s.kpa.data(), s.kpa.size(), mat.cells(), path, "");
   return s;
 }
 

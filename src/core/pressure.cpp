@@ -43,4 +43,20 @@ void check_finite(const float* kpa, std::size_t n, int cells, const std::string&
                               std::to_string(first_frame + i / std::size_t(cells > 0 ? cells : 1)));
 }
 
+void check_pressure(const float* kpa, std::size_t n, int cells, const std::string& file, const std::string& what,
+                    std::size_t first_frame) {
+  check_finite(kpa, n, cells, file, what, first_frame);
+  const float lo = float(kPressureRangeKpa.lo), hi = float(kPressureRangeKpa.hi);
+  float least = 0, most = 0;  // a vectorised scan first: the offender is looked for only when there is one
+  for (std::size_t i = 0; i < n; ++i) {
+    least = std::min(least, kpa[i]);
+    most = std::max(most, kpa[i]);
+  }
+  if (least >= lo && most <= hi) return;
+  const std::size_t i = std::size_t(std::find_if(kpa, kpa + n, [&](float v) { return v < lo || v > hi; }) - kpa);
+  throw Error::in(file, (what.empty() ? std::string() : what + ": ") + number_text(kpa[i]) + " kPa in frame " +
+                            std::to_string(first_frame + i / std::size_t(cells > 0 ? cells : 1)) + ", outside " +
+                            kPressureRangeKpa.text() + " kPa");
+}
+
 }  // namespace ptnet

@@ -358,7 +358,7 @@ void Dataset::read(const std::string& name, int start, int count, float* out) co
   }
 }
 
-// out[count, rows, cols] <- frames [start, start + count) of ds, checked finite.
+// out[count, rows, cols] <- frames [start, start + count) of ds, checked finite and in range.
 void Dataset::Impl::read_block(const H5::DataSet& ds, const std::string& what, int start, int count,
                                float* out) const {
   const MatSpec& mat = info.mat;
@@ -368,7 +368,7 @@ void Dataset::Impl::read_block(const H5::DataSet& ds, const std::string& what, i
   fspace.selectHyperslab(H5S_SELECT_SET, dims, offset);
   H5::DataSpace mspace(3, dims);
   ds.read(out, H5::PredType::NATIVE_FLOAT, mspace, fspace);
-  check_finite(out, size_t(count) * mat.cells(), mat.cells(), path, what, size_t(start));
+  check_pressure(out, size_t(count) * mat.cells(), mat.cells(), path, what, size_t(start));
 }
 
 PressureSequence Dataset::read(const std::string& name) const {

@@ -85,6 +85,7 @@ void check_frames(const std::string& path, const std::string& where, const Datas
     throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
                               std::to_string(r) + " col " + std::to_string(c));
   }
+  check_pressure(seq.kpa.data(), seq.kpa.size(), mat.cells(), path, where);
 }
 
 // float32 [T, rows, cols] in chunks of kChunkFrames frames, deflated by

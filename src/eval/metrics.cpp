@@ -1,12 +1,26 @@
 // Metrics of a predicted pressure sequence against ground truth (eval.hpp).
 #include <cmath>
+#include <utility>
 
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
 
 namespace ptnet {
 
+namespace {
+// A NaN or infinity would make a metric NaN, or compare false everywhere
+// (binary R^2 1): an Error naming the metric, the array and the index.
+void check_values(const float* predicted, const float* truth, std::size_t n, const char* what) {
+  for (const auto& [values, name] : {std::pair{predicted, "predicted"}, std::pair{truth, "truth"}}) {
+    const std::size_t i = first_non_finite(values, n);
+    if (i < n)
+      throw Error(std::string(what) + ": " + name + ": non-finite value (NaN or Inf) at index " + std::to_string(i));
+  }
+}
+}  // namespace
+
 double rmse(const float* predicted, const float* truth, std::size_t n) {
+  check_values(predicted, truth, n, "rmse");
   if (n == 0) return 0;
   double sse = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -28,6 +42,7 @@ void check_threshold(double threshold_kpa, const char* what) {
 
 double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
   check_threshold(threshold_kpa, "binary_r2");
+  check_values(predicted, truth, n, "binary_r2");
   std::size_t ones = 0, mismatches = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;
@@ -40,6 +55,7 @@ double binary_r2(const float* predicted, const float* truth, std::size_t n, doub
 double contact_iou(const float* predicted, const float* truth, std::size_t n,
                    double threshold_kpa) {
   check_threshold(threshold_kpa, "contact_iou");
+  check_values(predicted, truth, n, "contact_iou");
   std::size_t both = 0, either = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;

@@ -54,6 +54,7 @@ PressureSequence read_csv_frames(const std::string& path, const MatSpec& mat, do
       s.kpa[i++] = float(v);
     }
   });
+  check_pressure(s.kpa.data(), s.kpa.size(), mat.cells(), path, "");
   return s;
 }
 

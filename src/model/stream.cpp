@@ -64,7 +64,7 @@ long long Stream::frames_in() const { return impl_->frames; }
 int Stream::push(const float* frame, float* out) {
   Impl& s = *impl_;
   const ModelDir& d = s.model->dir;
-  check_finite(frame, std::size_t(s.cells), s.cells, s.options.input_name, "pressure frames", std::size_t(s.frames));
+  check_pressure(frame, std::size_t(s.cells), s.cells, s.options.input_name, "pressure frames", std::size_t(s.frames));
   std::memcpy(s.one.kpa.data(), frame, sizeof(float) * std::size_t(s.cells));
   const PressureSequence& in = s.zoom ? zoom_about_centre(s.one, s.scale, s.gain) : s.one;
   // Shift the window by one frame and append the new one, normalised.

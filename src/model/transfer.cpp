@@ -86,6 +86,8 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
                 std::to_string(k));
   check_body_range(source, "source body");
   check_body_range(target, "target body");
+  // Readings a mat cannot make (3e38 kPa became zeros, negative kPa passed).
+  check_pressure(src.kpa.data(), src.kpa.size(), h * w, "transfer", "the source sequence");
 
   // Window starts every `stride` frames, plus one ending at the last frame.
   // (A stride beyond the window would leave frames uncovered.)
