@@ -91,8 +91,9 @@ void setup(CLI::App& app) {
   auto opt = std::make_shared<TransferCli>();
   auto* cmd = app.add_subcommand(
       "transfer",
-      "Transfer a pressure sequence (>= 30 frames) from its body to a target body with a trained\n"
-      "model: overlapping windows, averaged. Input: a dataset sequence (--in data.h5 --sequence NAME;\n"
+      "Transfer a pressure sequence (at least the model's window: 30 frames for the window networks,\n"
+      "1 for the frame network) from its body to a target body with a trained model: overlapping\n"
+      "windows, averaged. Input: a dataset sequence (--in data.h5 --sequence NAME;\n"
       "the source body is read from the dataset) or a float32 .npy of shape [T, 80, 28] (--source\n"
       "required). Output: a one-sequence dataset (.h5) or a .npy of the same shape (kPa).");
   cmd->add_option("--model", opt->model, "Model folder (ptnet train)")->required();

@@ -68,6 +68,25 @@ TEST_F(ImportCli, FifoEntryIsRefusedWithoutWaiting) {
   EXPECT_EQ(r.err, "ptnet: error: " + (dir_ / "live.npy").string() + ": is a FIFO, expected a regular file\n");
 }
 
+// The manifest itself /dev/zero or a FIFO: refused at once (before, a
+// /dev/zero manifest was read to the 1 GiB text limit, 2.26 GB for 4 s, and
+// a FIFO without a writer waited for ever).
+TEST_F(ImportCli, AManifestThatIsNoFileIsRefusedAtOnce) {
+  fs::create_symlink("/dev/zero", dir_ / "zero.csv");
+  ASSERT_EQ(::mkfifo((dir_ / "fifo.csv").c_str(), 0600), 0);
+  for (const auto& [name, kind] : {std::pair{"zero.csv", "a character device"}, std::pair{"fifo.csv", "a FIFO"}}) {
+    const pid_t p = spawn_ptnet("import --manifest '" + (dir_ / name).string() + "' --out '" +
+                                    (dir_ / "out.h5").string() + "'",
+                                dir_ / "manifest.err");
+    long kb = 0;
+    EXPECT_EQ(wait_within(p, kBound, &kb), 1) << name << ": " << slurp(dir_ / "manifest.err");
+    EXPECT_EQ(slurp(dir_ / "manifest.err"),
+              "ptnet: error: " + (dir_ / name).string() + ": is " + kind + ", expected a regular file\n");
+    EXPECT_LT(kb, 1024L * 1024) << name << ": peak " << kb / 1024 << " MiB";  // LibTorch itself: ~300 MiB
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out.h5"));
+}
+
 TEST_F(ImportCli, ARecordingIsHeldOnce) {
   // Peak resident memory of an import of `frames` frames of 80 x 28.
   const auto peak_kb = [&](int frames) {

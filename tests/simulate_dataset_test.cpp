@@ -2,6 +2,7 @@
 // does not depend on threads or chunking; sequence metadata; clips CSV
 // parsing and its one-line errors; category guesses.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -109,6 +110,11 @@ TEST_F(SimulateDataset, ClipsCsvRowsAndErrors) {
                   "found 'file,subject,take'");
   spit(csv, "file,subject,category,take\ngone.bvh,1,walking,1\n");
   EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'gone.bvh' not found");
+  // A FIFO is there, but no clip (before: "not found"; har-bench --mocap said so).
+  ASSERT_EQ(::mkfifo((dir_ / "live.bvh").c_str(), 0600), 0);
+  spit(csv, "file,subject,category,take\nlive.bvh,1,walking,1\n");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'live.bvh' is a FIFO, expected a regular file");
+  fs::remove(dir_ / "live.bvh");
 
   // Without a CSV: stems must be unique across folders.
   fs::create_directories(dir_ / "a");

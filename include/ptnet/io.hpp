@@ -17,6 +17,7 @@
 //   processes (kill -9) are removed by the next AtomicFile of that target.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,9 +29,31 @@ namespace ptnet {
 // Largest text input (BVH, CSV, JSON) read whole into memory.
 inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t(1) << 30;  // 1 GiB
 
-// Reads a whole file; throws Error naming the file when it cannot, when it is
-// larger than `max_bytes` or than the available memory. Non-regular files
-// (FIFOs) are read up to `max_bytes`.
+// An input file open for reading. Only a regular file (symbolic links
+// followed) is one: anything else is an Error naming the path ("x.csv: is a
+// FIFO, expected a regular file", "is a folder, expected a file"), decided
+// on the opened file itself and without blocking (a FIFO never waits for a
+// writer, a device such as /dev/zero is never read). Every reader of user
+// files opens them through it.
+class InputFile {
+ public:
+  explicit InputFile(const std::string& path);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+  std::uint64_t size() const { return size_; }
+  // Up to `n` bytes into `out`; fewer only at the end of the file. Throws
+  // Error (kind io) on a read error.
+  std::size_t read(char* out, std::size_t n);
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;
+};
+
+// Reads a whole regular file (InputFile); throws Error naming the file when
+// it cannot, when it is larger than `max_bytes` or than the available memory.
 std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
 
 // What a file of stat mode `mode` is, for a message: "a folder", "a FIFO",

@@ -2,6 +2,7 @@
 // run decides what it may read into memory and what it may replace.
 #include "ptnet/io.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -167,27 +168,53 @@ Error open_error(const std::string& path, int err) {
   return Error::in(path, std::string("cannot open: ") + std::strerror(err), ErrorKind::io);
 }
 
-std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) throw open_error(path, errno);
-  if (S_ISDIR(st.st_mode)) throw Error::in(path, "is a folder, expected a file");
-  const bool regular = S_ISREG(st.st_mode);
-  if (regular && std::uint64_t(st.st_size) > max_bytes)
-    throw Error::in(path, bytes_text(std::uint64_t(st.st_size)) + ", more than the " + bytes_text(max_bytes) +
-                              " this kind of file may have");
-  if (regular) check_memory(std::uint64_t(st.st_size), path, "reading the file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw open_error(path, errno);
-  std::string text;
-  if (regular) text.reserve(std::size_t(st.st_size));
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    text.append(buf, std::size_t(in.gcount()));
-    if (text.size() > max_bytes)
-      throw Error::in(path, "more than the " + bytes_text(max_bytes) + " this kind of file may have (" +
-                                (regular ? "it grew while read" : "not a regular file: reading stopped") + ")");
+InputFile::InputFile(const std::string& path) : path_(path) {
+  const auto not_regular = [&](mode_t mode) {
+    return S_ISDIR(mode) ? Error::in(path, "is a folder, expected a file")
+                         : Error::in(path, std::string("is ") + file_kind(mode) + ", expected a regular file");
+  };
+  struct stat st {};
+  fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);  // a FIFO opens at once; a socket does not
+  if (fd_ < 0) {
+    const int err = errno;
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw not_regular(st.st_mode);
+    throw open_error(path, err);
   }
-  if (in.bad()) throw Error::in(path, "read error", ErrorKind::io);
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    throw not_regular(st.st_mode);
+  }
+  size_ = std::uint64_t(st.st_size);
+}
+
+InputFile::~InputFile() { ::close(fd_); }
+
+std::size_t InputFile::read(char* out, std::size_t n) {
+  std::size_t got = 0;
+  while (got < n) {
+    const ssize_t r = ::read(fd_, out + got, n - got);
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) throw Error::in(path_, "read error (" + std::string(std::strerror(errno)) + ")", ErrorKind::io);
+    if (r == 0) break;
+    got += std::size_t(r);
+  }
+  return got;
+}
+
+std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
+  InputFile in(path);
+  if (in.size() > max_bytes)
+    throw Error::in(path, bytes_text(in.size()) + ", more than the " + bytes_text(max_bytes) +
+                              " this kind of file may have");
+  check_memory(in.size(), path, "reading the file");
+  std::string text;
+  text.reserve(std::size_t(in.size()));
+  char buf[1 << 16];
+  for (std::size_t n; (n = in.read(buf, sizeof buf)) > 0;) {
+    text.append(buf, n);
+    if (text.size() > max_bytes)
+      throw Error::in(path, "more than the " + bytes_text(max_bytes) + " this kind of file may have (it grew while read)");
+  }
   return text;
 }
 

@@ -47,25 +47,20 @@ std::uint64_t data_bytes(const NpyHeader& h, const std::string& path, std::uint6
 
 // The header first, then the data straight into the array: the file is
 // never held twice, and only what the shape announces (checked against the
-// file's size and the available memory) is read.
+// file's size and the available memory) is read. A regular file only
+// (InputFile): /dev/zero or a FIFO is refused at once.
 NpyArray read_npy(const std::string& path) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) throw open_error(path, errno);
-  if (S_ISDIR(st.st_mode)) throw Error::in(path, "is a folder, expected a file");
+  InputFile in(path);
   note_input(path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw open_error(path, errno);
   std::string head(12, '\0');
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(std::size_t(in.gcount()));
+  head.resize(in.read(head.data(), head.size()));
   const std::size_t header_size = npy_header_size(head, path);
   if (header_size > kMaxNpyHeaderBytes)
     throw Error::in(path, "npy header of " + bytes_text(header_size) + ", more than " + bytes_text(kMaxNpyHeaderBytes));
   if (header_size > head.size()) {
     const std::size_t had = head.size();
     head.resize(header_size);
-    in.read(head.data() + had, std::streamsize(header_size - had));
-    if (std::size_t(in.gcount()) != header_size - had) throw Error::in(path, "npy header truncated");
+    if (in.read(head.data() + had, header_size - had) != header_size - had) throw Error::in(path, "npy header truncated");
   }
   NpyHeader h = parse_npy_header(head, path);
   std::uint64_t count = 0;
@@ -74,19 +69,17 @@ NpyArray read_npy(const std::string& path) {
     return Error::in(path, "expected " + std::to_string(need) + " data bytes for shape " + shape_text(h.shape) +
                                ", found " + found);
   };
-  const bool regular = S_ISREG(st.st_mode);
-  if (regular && std::uint64_t(st.st_size) - h.data_offset != need)
-    throw wrong_size(std::to_string(std::uint64_t(st.st_size) - h.data_offset));
+  if (in.size() - h.data_offset != need) throw wrong_size(std::to_string(in.size() - h.data_offset));
   if (need > kMaxNpyBytes)
     throw Error::in(path, bytes_text(need) + " of data, more than the " + bytes_text(kMaxNpyBytes) + " a .npy file may have");
   check_memory(need, path, "reading the array");
   NpyArray a;
   a.shape = std::move(h.shape);
   a.data.resize(std::size_t(count));
-  in.read(reinterpret_cast<char*>(a.data.data()), std::streamsize(need));  // little-endian host
-  if (std::uint64_t(in.gcount()) != need) throw wrong_size(std::to_string(in.gcount()) + (regular ? " (it shrank while read)" : ""));
-  if (in.peek() != std::char_traits<char>::eof()) throw wrong_size("more");
-  if (in.bad()) throw Error::in(path, "read error", ErrorKind::io);
+  const std::size_t got = in.read(reinterpret_cast<char*>(a.data.data()), std::size_t(need));  // little-endian host
+  if (got != need) throw wrong_size(std::to_string(got) + " (it shrank while read)");
+  char more = 0;
+  if (in.read(&more, 1) != 0) throw wrong_size("more");
   return a;
 }
 

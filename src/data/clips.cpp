@@ -1,5 +1,7 @@
 // The list of clips to simulate: a clips CSV, BVH files and folders, or the
 // embedded procedural motions; loading one clip.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -92,11 +94,13 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
     const std::vector<std::string> shipped = marker_map_names();
     r.marker_map = get(c_map);
     if (std::find(shipped.begin(), shipped.end(), r.marker_map) == shipped.end()) r.marker_map = resolved(r.marker_map);
-    std::error_code ec;
-    if (!fs::is_regular_file(r.file, ec))
-      throw Error(
-          path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " not found",
-          ErrorKind::not_found);
+    struct stat st {};
+    if (::stat(r.file.c_str(), &st) != 0)
+      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " not found",
+                  ErrorKind::not_found);
+    if (!S_ISREG(st.st_mode))  // a FIFO would block the run, a device never end
+      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " is " +
+                  file_kind(st.st_mode) + ", expected a regular file");
     rows.push_back(r);
   }
   if (rows.empty()) throw Error::in(path, "no clips listed after the header");
@@ -133,7 +137,8 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
       std::vector<std::string> found;
       for (auto it = fs::recursive_directory_iterator(in, ec); !ec && it != fs::recursive_directory_iterator();
            it.increment(ec))
-        if (it->is_regular_file(ec) && is_motion_file(it->path())) found.push_back(it->path().lexically_normal().string());
+        // Not only regular files: a FIFO or device named x.bvh is refused when read, not skipped.
+        if (!it->is_directory(ec) && is_motion_file(it->path())) found.push_back(it->path().lexically_normal().string());
       if (ec) throw Error::in(in, "cannot list folder: " + ec.message(), ErrorKind::io);
       if (found.empty()) throw Error::in(in, "folder holds no .bvh or .trc files");
       std::sort(found.begin(), found.end());
