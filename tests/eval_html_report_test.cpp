@@ -52,6 +52,31 @@ TEST(EvalHtmlReport, EveryMethodInTheRowsGetsItsColumnsAndBars) {
   EXPECT_NE(page.find("No model folder given."), std::string::npos);
 }
 
+// Only comparable numbers on one axis: the paper's RMSE is in its sensor's
+// units, so its bars are on the binary R^2 charts only (before, the RMSE
+// charts put them on the kPa axis), and its table column says so.
+TEST(EvalHtmlReport, ThePapersRmseIsOnNoKpaAxis) {
+  TempDir dir("html_report_units");
+  std::vector<EvalRow> rows;
+  for (const char* m : {"model", "model_raw", "copy", "weight_ratio", "body_scale", "floor"})
+    for (int take : {1, 2}) rows.push_back(row(m, "walking", take, 2.0));
+  ReportOptions o;
+  o.out_dir = dir.path.string();
+  write_report_html(rows, {}, {}, "d.h5", o);
+  for (const char* split : {"seen", "unseen"}) {
+    const std::string rmse = read_text_file(dir.file(std::string("chart_rmse_kpa_") + split + ".svg"));
+    const std::string r2 = read_text_file(dir.file(std::string("chart_binary_r2_") + split + ".svg"));
+    EXPECT_EQ(rmse.find(">paper<"), std::string::npos) << split;
+    EXPECT_EQ(rmse.find(", paper: "), std::string::npos) << split;
+    EXPECT_NE(r2.find(">paper<"), std::string::npos) << split;
+    EXPECT_NE(r2.find(std::string("walking, paper: ") + (split == std::string("seen") ? "0.81" : "0.71")),
+              std::string::npos)
+        << split;
+  }
+  const std::string page = read_text_file(dir.file("index.html"));
+  EXPECT_NE(page.find("<th>RMSE (its units)</th>"), std::string::npos);
+}
+
 TEST(EvalHtmlReport, TrainingCurveFromHistoryCsvAndTheConfig) {
   TempDir dir("html_report_model");
   std::filesystem::create_directories(dir.path / "model");

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -66,6 +67,24 @@ std::map<std::string, std::string> expected_cells(const std::vector<EvalRow>& ro
   return cells;
 }
 
+// In a page holding a chart's SVG inline: "fits" when every <text> (but the
+// rotated axis label) lies within the SVG and overlaps no other, else what
+// does not.
+constexpr const char* kFitScript = R"js(
+var svg = document.querySelector('svg'), w = svg.width.baseVal.value, bad = [];
+var texts = Array.prototype.filter.call(svg.querySelectorAll('text'), function (t) { return !t.getAttribute('transform'); });
+var boxes = texts.map(function (t) { return t.getBBox(); });
+boxes.forEach(function (b, i) {
+  if (b.x < 0 || b.x + b.width > w) bad.push('cut: ' + texts[i].textContent);
+  for (var j = 0; j < i; ++j) {
+    var c = boxes[j];
+    if (b.x < c.x + c.width && c.x < b.x + b.width && b.y < c.y + c.height && c.y < b.y + b.height)
+      bad.push('over: ' + texts[i].textContent + ' / ' + texts[j].textContent);
+  }
+});
+document.getElementById('fit').textContent = bad.length ? bad.join('; ') : 'fits';
+)js";
+
 TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
   TempDir dir("report_page");
   const std::string data = dir.file("data.h5"), model = dir.file("model"),
@@ -101,6 +120,23 @@ TEST(ReportPage, LoadsInChromiumWithTable2EqualToMetricsCsv) {
   EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 10000)
       << "no screenshot at " << shot << "\n"
       << load.log;
+
+  // Every text of every chart inside the chart, none over another, as the
+  // browser lays it out (before: the RMSE chart's legend was cut at "noise
+  // fl" and its paper entry was beyond the edge).
+  for (const auto& e : fs::directory_iterator(report)) {
+    const std::string name = e.path().filename().string();
+    if (e.path().extension() != ".svg") continue;
+    const fs::path wrapper = dir.path / (name + ".html");
+    std::ofstream(wrapper) << "<!DOCTYPE html><html><body>" << read_text_file(e.path().string())
+                           << "<pre id=\"fit\"></pre><script>" << kFitScript << "</script></body></html>";
+    const auto fit = testing_browser::run_chromium(chromium, wrapper, dir.path / "fit", "--dump-dom");
+    const std::string mark = "<pre id=\"fit\">";
+    const auto at = fit.out.find(mark);
+    ASSERT_NE(at, std::string::npos) << name << ": " << fit.err.substr(0, 500);
+    const auto start = at + mark.size();
+    EXPECT_EQ(fit.out.substr(start, fit.out.find("</pre>", start) - start), "fits") << name;
+  }
 
   const auto rows =
       parse_metrics_csv(read_text_file((fs::path(report) / "metrics.csv").string()), "metrics.csv");

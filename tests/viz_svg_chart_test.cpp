@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <regex>
+#include <set>
 
 #include "ptnet/error.hpp"
 #include "ptnet/viz.hpp"
@@ -44,6 +46,37 @@ TEST(SvgBarChart, OneBarPerFiniteValueWithItsValueInTheTooltip) {
   EXPECT_NE(svg.find("RMSE &lt;seen&gt;"), std::string::npos);
   EXPECT_EQ(count(svg, "<path d="), 3u);  // whiskers of the copy bars
   EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+}
+
+// A legend wider than the chart wraps onto more rows above a lower plot, so
+// that no entry runs past the chart (before, the report's 600 px RMSE chart
+// showed "noise fl" and no paper). Width: 7.5 px a character at 12 px, the
+// widest DejaVu Sans gives in chromium (eval_report_page_smoke_test checks
+// the real text in the browser).
+TEST(SvgBarChart, ALongLegendWrapsWithinTheChart) {
+  BarChart c;
+  c.width = 600;
+  c.groups = {"walking", "average"};
+  for (const char* name : {"model", "model (raw)", "copy", "weight ratio", "body scale", "noise floor", "paper"})
+    c.series.push_back({name, {1, 2}, {}});
+  const std::string svg = svg_bar_chart(c);
+  std::set<double> rows;
+  for (const auto& series : c.series) {
+    const std::string tag = ">" + series.name + "</text>";
+    const auto end = svg.find(tag);
+    ASSERT_NE(end, std::string::npos) << series.name << " is not in the legend";
+    const auto start = svg.rfind("<text x=\"", end);
+    double x = 0, y = 0;
+    ASSERT_EQ(std::sscanf(svg.c_str() + start, "<text x=\"%lf\" y=\"%lf\"", &x, &y), 2);
+    EXPECT_LE(x + 7.5 * double(series.name.size()), 600 - 16) << series.name;
+    rows.insert(y);
+  }
+  EXPECT_EQ(rows.size(), 2u);
+  // The plot starts below the second row: the top grid line is at 56 + 18.
+  EXPECT_NE(svg.find("y1=\"74.00\""), std::string::npos) << svg.substr(0, 3000);
+  // A chart too short for its legend is an error, not a cut legend.
+  c.height = 56 + 40 + 30;
+  EXPECT_THROW(svg_bar_chart(c), Error);
 }
 
 TEST(SvgBarChart, NegativeValuesGetAZeroLineAndBarsBelowIt) {

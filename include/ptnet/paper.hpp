@@ -32,12 +32,14 @@ struct BodyDistribution {
 inline constexpr BodyDistribution kPaperFemale{165, 15, 65, 10};
 inline constexpr BodyDistribution kPaperMale{175, 15, 75, 10};
 
-// The paper's Table 2: PressureTransferNet on its test bodies, RMSE (kPa) and
+// The paper's Table 2: PressureTransferNet on its test bodies, RMSE and
 // binary R^2 per motion category and on average, seen and unseen motions.
+// Its RMSE is in its simulator's sensor units (PresSim's; the paper does not
+// state them), not kPa: beside ours only in a table, never on a kPa axis.
 struct PaperTable2Row {
   const char* category;  // walking | rom | freestyle | acting | average
-  double seen_rmse_kpa, seen_binary_r2;
-  double unseen_rmse_kpa, unseen_binary_r2;
+  double seen_rmse, seen_binary_r2;      // RMSE in the paper's sensor units
+  double unseen_rmse, unseen_binary_r2;
 };
 inline constexpr PaperTable2Row kPaperTable2[] = {
     {"walking", 8.72, 0.81, 12.46, 0.71},   {"rom", 9.21, 0.78, 12.89, 0.69},

@@ -101,8 +101,8 @@ std::string table2_html(const Summary& s) {
   o << "<th colspan=\"2\">paper (Table 2)</th>";
   if (has_model) o << "<th colspan=\"3\">model, more metrics</th>";
   o << "</tr>\n<tr>";
-  for (std::size_t i = 0; i <= s.methods.size(); ++i)
-    o << "<th>RMSE (kPa)</th><th>bin. R&sup2;</th>";
+  for (std::size_t i = 0; i < s.methods.size(); ++i) o << "<th>RMSE (kPa)</th><th>bin. R&sup2;</th>";
+  o << "<th>RMSE (its units)</th><th>bin. R&sup2;</th>";
   if (has_model) o << "<th>CoP err. (cm)</th><th>force err. (%)</th><th>contact IoU</th>";
   o << "</tr>\n";
   const int columns = 2 + 2 * int(s.methods.size() + 1) + (has_model ? 3 : 0);
@@ -142,13 +142,16 @@ std::string table2_html(const Summary& s) {
   for (const auto& m : s.methods)
     o << "<li><b>" << html_escape(method_label(m)) << "</b>: " << html_escape(method_note(m))
       << "</li>\n";
-  o << "<li><b>paper</b>: the model's figures in the paper's Table 2 (real recordings; ours are "
-       "simulated)</li>\n"
+  o << "<li><b>paper</b>: the model's figures in the paper's Table 2 (its simulator's data, ours are "
+       "another simulator's; its RMSE is in its sensor's units, which it does not state: not kPa, so not "
+       "on the RMSE charts)</li>\n"
     << "</ul>\n";
   return o.str();
 }
 
-// One SVG per metric and split: groups = categories and the average, bars = methods and the paper.
+// One SVG per metric and split: groups = categories and the average, bars =
+// methods; the paper's bars on the binary R^2 charts only (its RMSE is not in
+// kPa: no number of another unit on a kPa axis).
 std::vector<std::pair<std::string, std::string>> bar_charts(const Summary& s) {
   const nlohmann::json paper = paper_table2();
   std::vector<std::pair<std::string, std::string>> charts;  // file name, SVG
@@ -174,12 +177,14 @@ std::vector<std::pair<std::string, std::string>> bar_charts(const Summary& s) {
         }
         c.series.push_back(b);
       }
-      BarSeries p{"paper", {}, {}};
-      for (const auto& g : c.groups) {
-        const nlohmann::json* v = paper_value(paper, seen, g);
-        p.values.push_back(v ? (*v)[metric == "rmse_kpa" ? 0 : 1].get<double>() : NAN);
+      if (metric == "binary_r2") {
+        BarSeries p{"paper", {}, {}};
+        for (const auto& g : c.groups) {
+          const nlohmann::json* v = paper_value(paper, seen, g);
+          p.values.push_back(v ? (*v)[1].get<double>() : NAN);
+        }
+        c.series.push_back(p);
       }
-      c.series.push_back(p);
       charts.emplace_back("chart_" + metric + "_" + split_name(seen) + ".svg", svg_bar_chart(c));
     }
   }

@@ -1,12 +1,15 @@
 // SVG charts for the report pages: grouped bars and lines (viz.hpp).
 //
-// Layout in px: a title line on top, the legend under it, the plot area
-// between a left margin (y tick labels, y label) and a bottom margin (x
-// labels). Every value is also in a <title> of its mark (hover tooltip).
+// Layout in px: a title line on top, the legend under it (as many rows as
+// its entries need to fit the width), the plot area between a left margin
+// (y tick labels, y label) and a bottom margin (x labels). Every value is
+// also in a <title> of its mark (hover tooltip).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "ptnet/error.hpp"
 #include "ptnet/viz.hpp"
@@ -16,8 +19,13 @@ namespace {
 
 constexpr int kLeft = 64;  // y tick labels and y label
 constexpr int kRight = 16;
-constexpr int kTop = 56;     // title and legend
+constexpr int kTop = 56;     // title and one row of legend
+constexpr int kLegendRow = 18;  // each further row of legend
 constexpr int kBottom = 40;  // x labels
+// Legend text width, px per character at 12 px: DejaVu Sans in chromium
+// measured 5.7-7.5 (narrow "floor", wide "model"); the upper end, so a row
+// never runs past the chart.
+constexpr double kCharPx = 7.5;
 constexpr int kFontPx = 12;
 constexpr const char* kAxisInk = "#555555";
 constexpr const char* kGridInk = "#e4e4e4";
@@ -64,6 +72,29 @@ struct Frame {
   double x0, x1, y0, y1;  // plot area (y0 top)
 };
 
+// Where each legend entry goes: its x and its row, entries packed left to
+// right and wrapped before they would pass the chart's right margin.
+struct LegendPlace {
+  double x;
+  int row;
+};
+std::vector<LegendPlace> legend_places(const std::vector<std::string>& names, int width) {
+  std::vector<LegendPlace> out;
+  double x = kLeft;
+  int row = 0;
+  for (const std::string& name : names) {
+    const double w = 18 + kCharPx * double(name.size());  // the key, a gap, the text
+    if (x > kLeft && x + w > width - kRight) x = kLeft, ++row;
+    out.push_back({x, row});
+    x += w + 18;
+  }
+  return out;
+}
+int legend_rows(const std::vector<std::string>& names, int width) {
+  const auto places = legend_places(names, width);
+  return places.empty() ? 1 : places.back().row + 1;
+}
+
 std::ostringstream open_svg(const Frame& f, const std::string& title) {
   std::ostringstream o;
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f.width << "\" height=\"" << f.height
@@ -77,16 +108,17 @@ std::ostringstream open_svg(const Frame& f, const std::string& title) {
 
 void legend(std::ostringstream& o, const Frame& f, const std::vector<std::string>& names,
             bool lines) {
-  double x = f.x0;
+  const auto places = legend_places(names, f.width);
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string c = chart_colour(int(i));
+    const double x = places[i].x, y = 30 + kLegendRow * places[i].row;  // the key's top
     if (lines)
-      o << "<line x1=\"" << x << "\" y1=\"36\" x2=\"" << x + 14 << "\" y2=\"36\" stroke=\"" << c
-        << "\" stroke-width=\"2.5\"/>\n";
+      o << "<line x1=\"" << num(x) << "\" y1=\"" << num(y + 6) << "\" x2=\"" << num(x + 14) << "\" y2=\""
+        << num(y + 6) << "\" stroke=\"" << c << "\" stroke-width=\"2.5\"/>\n";
     else
-      o << "<rect x=\"" << x << "\" y=\"30\" width=\"12\" height=\"12\" fill=\"" << c << "\"/>\n";
-    o << "<text x=\"" << x + 18 << "\" y=\"40\">" << html_escape(names[i]) << "</text>\n";
-    x += 18 + 7.0 * double(names[i].size()) + 18;  // ~7 px per character at 12 px
+      o << "<rect x=\"" << num(x) << "\" y=\"" << num(y) << "\" width=\"12\" height=\"12\" fill=\"" << c
+        << "\"/>\n";
+    o << "<text x=\"" << num(x + 18) << "\" y=\"" << num(y + 10) << "\">" << html_escape(names[i]) << "</text>\n";
   }
 }
 
@@ -104,9 +136,11 @@ void y_axis(std::ostringstream& o, const Frame& f, const Axis& a, const std::str
     << num(cy) << ")\" fill=\"" << kAxisInk << "\">" << html_escape(label) << "</text>\n";
 }
 
-// The plot area of a chart of this size, inside the margins.
-Frame chart_frame(int width, int height) {
-  return {width, height, double(kLeft), double(width - kRight), double(kTop), double(height - kBottom)};
+// The plot area of a chart of this size, inside the margins, below a
+// legend of `rows` rows.
+Frame chart_frame(int width, int height, int rows) {
+  const double top = kTop + kLegendRow * (rows - 1);
+  return {width, height, double(kLeft), double(width - kRight), top, double(height - kBottom)};
 }
 
 // The SVG opened with its title, the series' legend and the y axis.
@@ -121,10 +155,17 @@ std::ostringstream open_chart(const Frame& f, const std::string& title, const st
   return o;
 }
 
-void check_size(int width, int height) {
-  if (width < kLeft + kRight + 40 || height < kTop + kBottom + 40)
-    throw Error("chart: " + std::to_string(width) + " x " + std::to_string(height) +
-                " px is too small");
+// A frame with room for a plot under its legend of `rows` rows.
+template <typename Series>
+Frame checked_frame(int width, int height, const std::vector<Series>& series) {
+  std::vector<std::string> names;
+  for (const auto& s : series) names.push_back(s.name);
+  const int rows = width < kLeft + kRight + 40 ? 1 : legend_rows(names, width);
+  const Frame f = chart_frame(width, height, rows);
+  if (width < kLeft + kRight + 40 || f.y1 - f.y0 < 40)
+    throw Error("chart: " + std::to_string(width) + " x " + std::to_string(height) + " px is too small" +
+                (rows > 1 ? " for its legend of " + std::to_string(rows) + " rows" : std::string()));
+  return f;
 }
 
 }  // namespace
@@ -137,7 +178,7 @@ std::string chart_colour(int i) {
 }
 
 std::string svg_bar_chart(const BarChart& c) {
-  check_size(c.width, c.height);
+  const Frame f = checked_frame(c.width, c.height, c.series);
   double lo = 0, hi = 0;
   for (const auto& s : c.series) {
     if (s.values.size() != c.groups.size())
@@ -153,7 +194,6 @@ std::string svg_bar_chart(const BarChart& c) {
     }
   }
   const Axis a = make_axis(lo, hi, true);
-  const Frame f = chart_frame(c.width, c.height);
   std::ostringstream o = open_chart(f, c.title, c.series, /*lines=*/false, a, c.y_label);
   const double group_w = (f.x1 - f.x0) / double(std::max<std::size_t>(1, c.groups.size()));
   const double bar_w = group_w * 0.8 / double(std::max<std::size_t>(1, c.series.size()));
@@ -186,7 +226,7 @@ std::string svg_bar_chart(const BarChart& c) {
 }
 
 std::string svg_line_chart(const LineChart& c) {
-  check_size(c.width, c.height);
+  const Frame f = checked_frame(c.width, c.height, c.series);
   double xlo = INFINITY, xhi = -INFINITY, ylo = 0, yhi = 0;
   bool whole_x = true;  // e.g. epochs: ticks at whole numbers only
   for (const auto& s : c.series) {
@@ -207,7 +247,6 @@ std::string svg_line_chart(const LineChart& c) {
   Axis xa;
   xa.lo = xlo, xa.hi = xhi, xa.step = nice_step((xhi - xlo) / 8);
   if (whole_x) xa.step = std::max(1.0, std::floor(xa.step));
-  const Frame f = chart_frame(c.width, c.height);
   std::ostringstream o = open_chart(f, c.title, c.series, /*lines=*/true, ya, c.y_label);
   for (double v = std::ceil(xlo / xa.step - 1e-9) * xa.step; v <= xhi + xa.step * 1e-6;
        v += xa.step) {
