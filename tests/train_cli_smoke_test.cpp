@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cli_test_util.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/transfer.hpp"
@@ -161,6 +162,19 @@ TEST(CliBaselines, AModelNoBetterThanTheBaselinesIsReported) {
   const std::string m((std::istreambuf_iterator<char>(metrics)), {}), p((std::istreambuf_iterator<char>(page)), {});
   EXPECT_NE(m.find("\"warning\": \"" + warning + "\""), std::string::npos);
   EXPECT_NE(p.find("<p class=\"warning\">"), std::string::npos);
+
+  // Outputs that exist are refused before the work, not after it: evaluate
+  // before its pairs (it evaluated them all first), train before the ranks
+  // meet (rank 0 waited --dist-timeout for rank 1 first).
+  r = run("evaluate --model " + model + " --data " + data + " --out " + (dir / "report").string() + " --threads 1");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "ptnet: error: " + (dir / "report" / "metrics.csv").string() + ": exists; pass --force to overwrite\n");
+  const auto t = ptnet::testing_cli::run_program(
+      PTNET_BINARY, "train --data " + data + " --out " + model + " --world-size 2 --rank 0 --dist-timeout 60"
+                    " --rendezvous tcp://127.0.0.1:" + std::to_string(29400 + ::getpid() % 500),
+      dir / "train", {}, "PTNET_DIST_TOKEN=check-before-work-token");
+  EXPECT_EQ(t.status, 1);
+  EXPECT_EQ(t.err, "ptnet: error: " + model + ": exists; pass --force to overwrite or --resume to continue\n");
   fs::remove_all(dir);
 }
 

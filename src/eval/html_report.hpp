@@ -10,6 +10,12 @@
 
 namespace ptnet {
 
+// The report's files that need `force` when they exist (write_report checks
+// them before writing any); check_report_outputs checks them, folder or not
+// yet, and run_evaluation does so before evaluating a single pair.
+inline constexpr const char* kReportFiles[] = {"metrics.csv", "metrics.json", "index.html"};
+void check_report_outputs(const std::string& out_dir, bool force);
+
 // The paper's Table 2: {"seen"|"unseen": {category|"average": [RMSE kPa, binary R^2]}}.
 nlohmann::json paper_table2();
 

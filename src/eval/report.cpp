@@ -108,13 +108,16 @@ TestPair pair_of(const EvalRow& r) {
 
 }  // namespace
 
+void check_report_outputs(const std::string& out_dir, bool force) {
+  check_outputs_in_folder(out_dir, std::vector<std::string>(std::begin(kReportFiles), std::end(kReportFiles)), force);
+}
+
 std::vector<std::string> write_report(const Dataset& dataset, const std::vector<EvalRow>& rows,
                                       const TransferFn& model, const ReportOptions& options) {
   make_folder(options.out_dir);
   const auto path = [&](const std::string& name) { return (fs::path(options.out_dir) / name).string(); };
   // Refuse before writing anything, so a refused run leaves no partial report.
-  std::vector<std::string> names{"metrics.csv", "metrics.json", "index.html"};
-  for (const auto& name : names) check_output_path(path(name), options.force);
+  for (const char* name : kReportFiles) check_output_path(path(name), options.force);
 
   std::vector<std::string> written;
   CommitGroup report;  // every file appears at the end, or none (a failure keeps the previous report)

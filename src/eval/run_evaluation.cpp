@@ -5,11 +5,13 @@
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
 #include "ptnet/transfer.hpp"
+#include "html_report.hpp"
 
 namespace ptnet {
 
 EvaluationResult run_evaluation(const EvaluationRun& run) {
   check_range("threshold_kpa", run.threshold_kpa, kThresholdKpaRange);
+  check_report_outputs(run.out_dir, run.force);  // before the pairs, not after them
   const Dataset dataset = Dataset::open(run.data_path);
   TransferOptions to;
   to.stride = run.stride;

@@ -10,7 +10,7 @@
 namespace ptnet {
 namespace fs = std::filesystem;
 
-void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
+void check_out_dir(const std::string& dir, const TrainOptions& o) {
   std::error_code ec;
   if (o.resume) {
     if (!fs::is_directory(dir, ec))
@@ -19,13 +19,21 @@ void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
   }
   if (existing_folder(dir)) {
     if (!o.force && !fs::is_empty(dir, ec)) throw exists_error(dir, field_text("resume") + " to continue");
-    for (const char* f : ModelFiles::kAll) fs::remove(ModelFiles(dir).path(f), ec);
   } else {
     fs::path parent = fs::path(dir).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec))
       throw Error::in(dir, "folder " + parent.string() + " does not exist", ErrorKind::not_found);
-    make_folder(dir);
   }
+}
+
+void prepare_out_dir(const std::string& dir, const TrainOptions& o) {
+  check_out_dir(dir, o);
+  if (o.resume) return;
+  std::error_code ec;
+  if (existing_folder(dir))
+    for (const char* f : ModelFiles::kAll) fs::remove(ModelFiles(dir).path(f), ec);
+  else
+    make_folder(dir);
 }
 
 LeftoverGuard::~LeftoverGuard() {

@@ -20,6 +20,9 @@ namespace ptnet {
 // exist), or an empty one is taken, or with o.force the model files of an
 // existing one are removed; throws Error naming the folder.
 void prepare_out_dir(const std::string& dir, const TrainOptions& o);
+// The same checks, changing nothing: train() makes them before any work
+// (before the ranks meet and the windows are indexed).
+void check_out_dir(const std::string& dir, const TrainOptions& o);
 
 // Removes what a fresh run wrote when it fails while setting up (before the
 // first epoch starts: bad --init weights, memory, data): config.json,

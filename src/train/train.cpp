@@ -257,6 +257,7 @@ void check_ranks_agree(const TrainRun& run, const WindowIndex& index, const Pres
 
 TrainResult train(const PressureSource& source, const std::string& out_dir, const TrainOptions& o) {
   check_options(o);
+  if (o.rank == 0) check_out_dir(out_dir, o);  // before the ranks meet and the windows are indexed
   const auto t_start = std::chrono::steady_clock::now();
   // Joins the other ranks first: a bad rendezvous fails before any work.
   const auto comm = Communicator::join({o.world_size, o.rank, o.rendezvous, o.dist_timeout_s, o.dist_token});
