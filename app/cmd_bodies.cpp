@@ -9,12 +9,12 @@
 // `original` bodies (female,male counts, Gaussian) from an independent
 // random stream.
 #include <iostream>
-#include <sstream>
 
 #include "command.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet::cli {
 namespace {
@@ -29,12 +29,15 @@ struct BodiesCli {
 };
 
 void run(const BodiesCli& c) {
-  int of = 0, om = 0;
-  char comma = 0, extra = 0;
-  std::istringstream ss(c.originals);
-  if (!(ss >> of >> comma >> om) || comma != ',' || (ss >> extra) || of < 0 || om < 0)
-    throw Error("--originals: expected FEMALES,MALES like 2,2, found \"" + c.originals + "\"");
-  const auto bodies = sample_bodies(c.males, c.females, of, om, c.seed, parse_body_sampling(c.sampling));
+  const std::vector<std::string> counts = split(c.originals, ',');
+  std::int64_t of = 0, om = 0;
+  const auto count = [](const std::string& text, std::int64_t& n) {
+    return parse_integer(text, std::int64_t(kBodyCountRange.lo), std::int64_t(kBodyCountRange.hi), n);
+  };
+  if (counts.size() != 2 || !count(counts[0], of) || !count(counts[1], om))
+    throw Error("--originals: expected FEMALES,MALES like 2,2, each in " + kBodyCountRange.text() + ", found " +
+                escaped(c.originals));
+  const auto bodies = sample_bodies(c.males, c.females, int(of), int(om), c.seed, parse_body_sampling(c.sampling));
   write_text_file(c.out, format_bodies_csv(bodies), c.force);
   if (!globals().quiet) std::cerr << "bodies: wrote " << bodies.size() << " bodies to " << c.out << "\n";
 }
@@ -42,8 +45,8 @@ void run(const BodiesCli& c) {
 void setup(CLI::App& app) {
   auto c = std::make_shared<BodiesCli>();
   auto* cmd = app.add_subcommand("bodies", "Sample retargeted and original bodies as in the paper (CSV)");
-  cmd->add_option("--males", c->males, "Retargeted male bodies")->capture_default_str()->check(CLI::Range(0, 10000));
-  cmd->add_option("--females", c->females, "Retargeted female bodies")->capture_default_str()->check(CLI::Range(0, 10000));
+  cmd->add_option("--males", c->males, "Retargeted male bodies")->capture_default_str()->check(int_range(kBodyCountRange));
+  cmd->add_option("--females", c->females, "Retargeted female bodies")->capture_default_str()->check(int_range(kBodyCountRange));
   cmd->add_option("--originals", c->originals, "Held-out original bodies: FEMALES,MALES")->capture_default_str();
   cmd->add_option("--sampling", c->sampling,
                   "Retargeted bodies: paper (Gaussian draws) or cover (a Latin hypercube over mean +- 2.5 sd)")

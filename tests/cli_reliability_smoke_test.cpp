@@ -111,6 +111,17 @@ TEST_F(Reliability, PressureOutsideThePhysicalRangeIsRefused) {
   }
 }
 
+// Counts beyond their range are one line naming the range (before,
+// --originals 2,1000000000 ended in "out of memory").
+TEST_F(Reliability, BodyCountsHaveTheirRange) {
+  const RunResult r = run("bodies --originals 2,1000000000 --out counts.csv");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err, "ptnet: error: --originals: expected FEMALES,MALES like 2,2, each in [0, 10000], found "
+                   "'2,1000000000'\n");
+  expect_usage_error("bodies --males 10001 --out counts.csv", "--males");
+  EXPECT_FALSE(fs::exists(dir_ / "counts.csv"));
+}
+
 TEST_F(Reliability, SimulateNeverReplacesItsBodiesCsv) {
   const std::string before = slurp(dir_ / "bodies.csv");
   const RunResult r = run("-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies bodies.csv "

@@ -136,7 +136,9 @@ BodySampling parse_body_sampling(const std::string& name);  // "paper" | "cover"
 // plus held-out "original" bodies (originals_f female, originals_m male),
 // Gaussian draws from an independent random stream, so adding originals
 // never changes the retargeted bodies (nor the sampling the originals).
-// Ids: f01.., m01.. (retargeted), of01.., om01.. (original).
+// Ids: f01.., m01.. (retargeted), of01.., om01.. (original). Each count in
+// kBodyCountRange (an Error naming it otherwise), not all 0.
+inline constexpr Range kBodyCountRange{0, 10000};
 std::vector<BodySpec> sample_bodies(int males, int females, int originals_f, int originals_m,
                                     std::uint64_t seed, BodySampling sampling = BodySampling::paper);
 

@@ -36,8 +36,10 @@ BodySampling parse_body_sampling(const std::string& name) {
 
 std::vector<BodySpec> sample_bodies(int males, int females, int originals_f, int originals_m,
                                     std::uint64_t seed, BodySampling sampling) {
-  if (males < 0 || females < 0 || originals_f < 0 || originals_m < 0)
-    throw Error("sample_bodies: counts must be >= 0");
+  check_range("males", males, kBodyCountRange);
+  check_range("females", females, kBodyCountRange);
+  check_range("originals_f", originals_f, kBodyCountRange);
+  check_range("originals_m", originals_m, kBodyCountRange);
   if (males + females + originals_f + originals_m == 0) throw Error("sample_bodies: no bodies requested");
   // Four independent streams, so that e.g. adding originals or males never
   // changes the other bodies.
