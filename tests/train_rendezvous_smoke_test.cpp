@@ -25,6 +25,7 @@
 #include <thread>
 
 #include "cli_test_util.hpp"
+#include "train/store_protocol.hpp"
 #include "train_synthetic.hpp"
 
 using ptnet::testing_cli::run_program;
@@ -188,14 +189,9 @@ TEST_F(Rendezvous, AnnouncedSizesAreNotAllocated) {
   EXPECT_LT(max_rss_kb, 1024L * 1024) << "peak resident memory " << max_rss_kb / 1024 << " MiB";
 }
 
-// A message of the store's protocol: its length, an op byte, the fields.
-std::string store_message(std::uint8_t op, const std::vector<std::string>& fields) {
-  std::string body(1, char(op));
-  const auto u32 = [](std::size_t v) {
-    return std::string{char(v & 0xff), char((v >> 8) & 0xff), char((v >> 16) & 0xff), char((v >> 24) & 0xff)};
-  };
-  for (const auto& f : fields) body += u32(f.size()) + f;
-  return u32(body.size()) + body;
+// A whole message of the store's protocol (store_protocol.hpp).
+std::string store_message(ptnet::store_protocol::Op op, const std::vector<std::string>& fields) {
+  return ptnet::store_protocol::framed(ptnet::store_protocol::request(op, fields));
 }
 
 // 50 strangers that greet the store (without the run's token) and write
@@ -211,9 +207,10 @@ TEST_F(Rendezvous, StrangersCannotKeepTheRanksOutNorEndTheRun) {
   std::vector<int> idle, strangers;
   for (int i = 0; i < 50; ++i) {
     const int fd = connect_within(port, i == 0 ? kStart : 5);
-    const std::string hello = i % 2 ? store_message(1, {"ptnet-store 1"})
-                                    : store_message(1, {"ptnet-store 2", "not-the-token-of-this-run"});
-    const std::string refuse = store_message(2, {"ptnet/refused", "a stranger says stop"});
+    using ptnet::store_protocol::kHello;
+    const std::string hello = i % 2 ? store_message(kHello, {"ptnet-store 1"})
+                                    : store_message(kHello, {"ptnet-store 2", "not-the-token-of-this-run"});
+    const std::string refuse = store_message(ptnet::store_protocol::kSet, {"ptnet/refused", "a stranger says stop"});
     if (fd >= 0) ::send(fd, (hello + refuse).data(), hello.size() + refuse.size(), MSG_NOSIGNAL);
     strangers.push_back(fd);
   }

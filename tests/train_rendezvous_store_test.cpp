@@ -22,6 +22,7 @@
 #include "data_test_util.hpp"
 #include "ptnet/error.hpp"
 #include "train/rendezvous_store.hpp"
+#include "train/store_protocol.hpp"
 
 using namespace ptnet;
 using ptnet::testing_cli::slurp;
@@ -147,17 +148,12 @@ TEST_F(Store, AFullStoreRefusesMore) {
   EXPECT_EQ(text(rank->get("v0")), "small");
 }
 
-// A message of the store's protocol (store_protocol.hpp): its length, an
-// op byte, then each field as its length and bytes.
-std::string message(std::uint8_t op, const std::vector<std::string>& fields) {
-  std::string body(1, char(op));
-  const auto u32 = [](std::size_t v) {
-    return std::string{char(v & 0xff), char((v >> 8) & 0xff), char((v >> 16) & 0xff), char((v >> 24) & 0xff)};
-  };
-  for (const auto& f : fields) body += u32(f.size()) + f;
-  return u32(body.size()) + body;
+// A whole message of the store's protocol (store_protocol.hpp).
+std::string message(store_protocol::Op op, const std::vector<std::string>& fields) {
+  return store_protocol::framed(store_protocol::request(op, fields));
 }
-constexpr std::uint8_t kHello = 1, kSet = 2;
+using store_protocol::kHello;
+using store_protocol::kSet;
 
 // Strangers on the port, 50 silent and 50 greeting without the run's token
 // (with the store's older greeting, or with another token), cannot keep the

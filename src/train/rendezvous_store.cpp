@@ -176,8 +176,7 @@ class TcpStore final : public c10d::Store {
   std::string call(Op op, const std::vector<std::string_view>& fields) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (broken_ || fd_ < 0) throw std::runtime_error("the connection to the store at " + where() + " was lost");
-    std::string body(1, char(op));
-    for (const auto& f : fields) put_field(body, f);
+    const std::string body = request(op, fields);
     if (body.size() > kMaxStoreMessage) throw Error("a store message of " + std::to_string(body.size()) + " bytes");
     const auto deadline = Clock::now() + timeout_;
     std::string reply;

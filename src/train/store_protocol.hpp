@@ -20,6 +20,7 @@
 #include <cstring>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "ptnet/error.hpp"
 #include "rendezvous_store.hpp"
@@ -61,6 +62,14 @@ inline std::string framed(const std::string& body) {
   std::string out;
   put_u32(out, std::uint32_t(body.size()));
   return out + body;
+}
+
+// The body of a request: its op byte, then its fields.
+template <class Field>
+std::string request(Op op, const std::vector<Field>& fields) {
+  std::string body(1, char(op));
+  for (const auto& f : fields) put_field(body, f);
+  return body;
 }
 
 // The fields of a message body, in order (a view: the body must outlive
