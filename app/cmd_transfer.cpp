@@ -36,6 +36,8 @@ void run(const TransferCli& c) {
   to.threads = c.threads;
   to.device = c.device;
   Transfer net(c.model, to);
+  // Said once the output is written (an error is the run's one line).
+  const auto warn = [&] { print_warning("transfer", ModelFiles(c.model).config(), baseline_warning(net.model().metrics)); };
   const BodySpec target = parse_body_attributes(c.target, "--target");
   check_body_range(target, "target body");
 
@@ -69,6 +71,7 @@ void run(const TransferCli& c) {
   PressureSequence out = net.run(src, source, target);
   if (npy_out) {
     write_npy_sequence(c.out, out, c.force);
+    warn();
     return;
   }
   BodySpec body = target;
@@ -85,6 +88,7 @@ void run(const TransferCli& c) {
   out.fps = info.fps;
   w.add(m, out);
   w.commit();
+  warn();
 }
 
 void setup(CLI::App& app) {

@@ -114,7 +114,8 @@ TEST_F(CliSmoke, TrainThenTransferToNpyAndH5) {
 // initial weights) is kept and reported: by `train` in a warning line naming
 // the all-zero and the copy baseline's validation RMSE (an error with
 // --strict), by `evaluate` in the same words, atop its page and in its
-// metrics.json (scripts/lopo.sh prints it). Before, all three said nothing.
+// metrics.json (scripts/lopo.sh prints it), by `transfer` too. Before, all
+// said nothing.
 TEST(CliBaselines, AModelNoBetterThanTheBaselinesIsReported) {
   const fs::path dir = fs::temp_directory_path() / ("ptnet_train_baselines_" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -157,6 +158,11 @@ TEST(CliBaselines, AModelNoBetterThanTheBaselinesIsReported) {
   r = run("evaluate --model " + model + " --data " + data + " --out " + (dir / "report").string() + " --threads 1");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("evaluate: warning: " + model + "/config.json: " + warning + "\n"), std::string::npos)
+      << r.err;
+  r = run("transfer --model " + model + " --in " + data + " --sequence m0__orig --target male,185,95 --out " +
+          (dir / "t.npy").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("transfer: warning: " + model + "/config.json: " + warning + "\n"), std::string::npos)
       << r.err;
   std::ifstream metrics(dir / "report" / "metrics.json"), page(dir / "report" / "index.html");
   const std::string m((std::istreambuf_iterator<char>(metrics)), {}), p((std::istreambuf_iterator<char>(page)), {});
