@@ -57,14 +57,13 @@ constexpr std::uint64_t kMaxSequences = 10000000;  // sequences of one dataset
 // and each body's id once (a clip a_x0.8.bvh beside a.bvh played at 0.8),
 // and no "<motion_id>__<body_id>" made twice by ids that hold "__".
 void check_names(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies) {
-  const auto where = [](const ClipSource& c) { return c.meta.source; };
   std::map<std::string, const ClipSource*> ids;
   bool split = false;  // an id holding "__": names may collide
   for (const ClipSource& c : clips) {
     const auto [it, fresh] = ids.emplace(c.meta.motion_id, &c);
     if (!fresh)
-      throw Error::in(where(c), "motion id " + escaped(c.meta.motion_id) + " is also that of " + where(*it->second) +
-                                    ": every clip needs its own");
+      throw Error::in(c.meta.source, "motion id " + escaped(c.meta.motion_id) + " is also that of " +
+                                         it->second->meta.source + ": every clip needs its own");
     split = split || c.meta.motion_id.find("__") != std::string::npos;
   }
   std::set<std::string> body_ids;
@@ -77,8 +76,8 @@ void check_names(const std::vector<ClipSource>& clips, const std::vector<BodySpe
   for (const ClipSource& c : clips)
     for (const BodySpec& b : bodies)
       if (!names.insert(c.meta.motion_id + "__" + b.id).second)
-        throw Error::in(where(c), "sequence name " + escaped(c.meta.motion_id + "__" + b.id) +
-                                      " made twice (motion and body ids holding \"__\")");
+        throw Error::in(c.meta.source, "sequence name " + escaped(c.meta.motion_id + "__" + b.id) +
+                                           " made twice (motion and body ids holding \"__\")");
 }
 
 // Threads to use; throws Error for impossible options, and for an output
