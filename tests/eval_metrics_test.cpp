@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "ptnet/error.hpp"
-#include "ptnet/csv.hpp"
-#include "ptnet/eval.hpp"
+#include "core/csv.hpp"
 #include "data_test_util.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
 
 namespace ptnet {
 namespace {

@@ -7,7 +7,7 @@
 //
 //   auto bodies = ptnet::sample_bodies(8, 8, 2, 2, /*seed=*/1);  // the paper's 16 + 4
 //
-// Model (docs/anthropometry.md, include/ptnet/anthropometry.hpp):
+// Model (docs/anthropometry.md):
 //  - segment lengths come from the pose (the canonical skeleton scaled by
 //    height, Drillis & Contini 1966); segment masses are sex-specific fractions
 //    of body weight (de Leva 1996), normalised to sum exactly to the weight;

@@ -7,8 +7,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/anthropometry.hpp"
 #include "foot_sole.hpp"
-#include "ptnet/anthropometry.hpp"
 #include "ptnet/error.hpp"
 
 namespace ptnet {

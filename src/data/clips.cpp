@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "ptnet/csv.hpp"
+#include "core/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"

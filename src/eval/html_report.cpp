@@ -14,7 +14,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "ptnet/csv.hpp"
+#include "core/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/zip_check.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/zip_check.hpp"
 
 namespace ptnet {
 namespace nn = torch::nn;

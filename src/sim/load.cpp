@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "sim_internal.hpp"
 
 namespace ptnet {

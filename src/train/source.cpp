@@ -1,7 +1,7 @@
 // Pressure sources, their digest, the training protocol filter.
 
+#include "core/hash.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/hash.hpp"
 #include "ptnet/train.hpp"
 
 namespace ptnet {

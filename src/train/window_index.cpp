@@ -5,8 +5,8 @@
 #include <random>
 #include <set>
 
+#include "core/hash.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/hash.hpp"
 #include "ptnet/train.hpp"
 #include "window_index.hpp"
 
