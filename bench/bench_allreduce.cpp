@@ -16,7 +16,7 @@
 #include <iostream>
 #include <torch/torch.h>
 
-#include "../src/dist/communicator.hpp"
+#include "dist/communicator.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/model_config.hpp"
 #include "ptnet/train.hpp"

@@ -42,7 +42,6 @@ enum Segment : int {
   kSegRightThigh, kSegRightShank, kSegRightFoot,
   kSegmentCount
 };
-const char* segment_name(int segment);  // "head_neck", "left_thigh", ...
 
 // How a segment's end points follow the pose. The proximal end is
 // pose[joint_a]; the distal end is pose[joint_b], moved on by extension_m

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <set>
 
+#include "core/body_spec_internal.hpp"
 #include "core/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"

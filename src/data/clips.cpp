@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/csv.hpp"
+#include "data/data_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"

@@ -16,6 +16,7 @@
 
 #include "core/parallel.hpp"
 #include "core/zip_check.hpp"
+#include "data/data_internal.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"

@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "core/csv.hpp"
+#include "eval_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"

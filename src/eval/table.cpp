@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/csv.hpp"
+#include "eval/eval_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
 #include "ptnet/strings.hpp"

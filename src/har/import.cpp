@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/csv.hpp"
+#include "har/har_internal.hpp"
 #include "ptnet/body_spec.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"

@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "core/zip_check.hpp"
+#include "model/model_config_internal.hpp"
+#include "model/model_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 

@@ -6,6 +6,7 @@
 // The layout is the one the motion, body and sim stages agree on
 // (ptnet-team notes, "The canonical skeleton").
 #include "core/anthropometry.hpp"
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "rig.hpp"

@@ -63,8 +63,4 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz)
 
 }  // namespace detail
 
-std::vector<double> vertical_load(const Motion& motion, const Body& body, double com_filter_hz) {
-  return detail::com_track(motion, body, com_filter_hz).load_n;
-}
-
 }  // namespace ptnet

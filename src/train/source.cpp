@@ -1,5 +1,7 @@
 // Pressure sources, their digest, the training protocol filter.
 
+#include "train/source.hpp"
+
 #include "core/hash.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/train.hpp"

@@ -8,6 +8,7 @@
 #include "core/hash.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/train.hpp"
+#include "source.hpp"
 #include "window_index.hpp"
 
 namespace ptnet {
