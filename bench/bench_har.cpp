@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "har/har_internal.hpp"
 #include "ptnet/har.hpp"
 
 using namespace ptnet::har;

@@ -17,6 +17,7 @@
 #include <chrono>
 #include <map>
 
+#include "model/model_config_internal.hpp"
 #include "ptnet/model.hpp"
 #include "ptnet/train.hpp"
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"
 

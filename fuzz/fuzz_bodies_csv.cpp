@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/body_spec_internal.hpp"
 #include "ptnet/body_spec.hpp"
 #include "ptnet/error.hpp"
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 

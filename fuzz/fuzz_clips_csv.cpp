@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string>
 
+#include "data/data_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/simulate_dataset.hpp"
 

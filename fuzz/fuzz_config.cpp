@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <string>
 
+#include "model/model_config_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/model_config.hpp"
 

@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/npy_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/npy.hpp"
 

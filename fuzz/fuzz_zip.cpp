@@ -2,8 +2,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "core/zip_check.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/zip_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

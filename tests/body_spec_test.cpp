@@ -8,6 +8,7 @@
 #include <random>
 #include <unistd.h>
 
+#include "core/body_spec_internal.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 

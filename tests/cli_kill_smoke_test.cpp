@@ -18,9 +18,9 @@
 #include <sstream>
 #include <thread>
 
+#include "core/zip_check.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/model_config.hpp"
-#include "ptnet/zip_check.hpp"
 
 using namespace ptnet;
 namespace fs = std::filesystem;

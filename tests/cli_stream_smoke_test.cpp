@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cli_test_util.hpp"
+#include "core/npy_internal.hpp"
 #include "data_test_util.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/transfer.hpp"

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/csv.hpp"
 #include "data_test_util.hpp"
 #include "ptnet/body_spec.hpp"
-#include "ptnet/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/simulate_dataset.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "ptnet/hash.hpp"
+#include "core/hash.hpp"
 #include "ptnet/pressure.hpp"
 #include "ptnet/sim.hpp"
 

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/io_internal.hpp"
 #include "data_test_util.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"

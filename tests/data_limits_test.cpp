@@ -10,7 +10,9 @@
 #include <fstream>
 
 #include <H5Cpp.h>
+#include "core/npy_internal.hpp"
 #include "data_test_util.hpp"
+#include "motion/motion_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/npy.hpp"

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "data_test_util.hpp"
+#include "eval/eval_internal.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/eval.hpp"

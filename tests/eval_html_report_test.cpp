@@ -8,6 +8,7 @@
 
 #include "../src/eval/html_report.hpp"  // internal to the eval stage
 #include "data_test_util.hpp"
+#include "eval/eval_internal.hpp"
 #include "ptnet/io.hpp"
 
 namespace ptnet {

@@ -4,10 +4,11 @@
 
 #include <cmath>
 
-#include "ptnet/error.hpp"
-#include "ptnet/csv.hpp"
-#include "ptnet/eval.hpp"
+#include "core/csv.hpp"
 #include "data_test_util.hpp"
+#include "eval/eval_internal.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/eval.hpp"
 
 namespace ptnet {
 namespace {

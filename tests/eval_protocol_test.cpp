@@ -6,6 +6,7 @@
 #include <map>
 
 #include "data_test_util.hpp"
+#include "eval/eval_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"

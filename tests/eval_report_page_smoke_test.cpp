@@ -16,6 +16,7 @@
 #include "browser_test_util.hpp"
 #include "cli_test_util.hpp"
 #include "data_test_util.hpp"
+#include "eval/eval_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/eval.hpp"
 #include "ptnet/io.hpp"

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 
+#include "har/bench_internal.hpp"
 #include "har/standin.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"

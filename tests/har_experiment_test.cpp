@@ -10,6 +10,7 @@
 #include <fstream>
 #include <random>
 
+#include "har/har_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 

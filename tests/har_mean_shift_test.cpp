@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 

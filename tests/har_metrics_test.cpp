@@ -1,6 +1,7 @@
 // Macro F1, accuracy and the confusion matrix against hand computation.
 #include <gtest/gtest.h>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 

@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cli_test_util.hpp"
+#include "core/zip_check.hpp"
+#include "data_test_util.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/model.hpp"
 #include "ptnet/transfer.hpp"
-#include "ptnet/zip_check.hpp"
-#include "cli_test_util.hpp"
-#include "data_test_util.hpp"
 #include "support/memory_source.hpp"
 #include "train_synthetic.hpp"
 

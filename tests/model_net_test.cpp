@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "model/model_config_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/model.hpp"
 

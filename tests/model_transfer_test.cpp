@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/npy_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/transfer.hpp"

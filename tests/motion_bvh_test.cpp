@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "data_test_util.hpp"
+#include "motion/motion_internal.hpp"
 #include "motion_gait_util.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"

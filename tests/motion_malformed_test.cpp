@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 

@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "motion/markers_internal.hpp"
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/markers.hpp"
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/motion.hpp"
 
 namespace {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "motion/motion_internal.hpp"
 #include "motion_gait_util.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"

@@ -3,6 +3,7 @@
 // measures H.
 #include <gtest/gtest.h>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 

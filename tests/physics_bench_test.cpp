@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "physics/physics_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"

@@ -44,8 +44,8 @@
 #include <string>
 #include <vector>
 
+#include "core/hash.hpp"
 #include "ptnet/body.hpp"
-#include "ptnet/hash.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
 #include "ptnet/simulate_dataset.hpp"

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/sim.hpp"
 #include "ptnet/simulate_dataset.hpp"

@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"

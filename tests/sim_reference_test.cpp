@@ -59,7 +59,7 @@
 #include <string>
 #include <vector>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"

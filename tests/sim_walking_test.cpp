@@ -10,7 +10,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"

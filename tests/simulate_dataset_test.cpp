@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "data/data_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/simulate_dataset.hpp"

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "cli_test_util.hpp"
+#include "core/npy_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/npy.hpp"
 #include "ptnet/transfer.hpp"

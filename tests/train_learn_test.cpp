@@ -17,6 +17,7 @@
 #include "ptnet/model.hpp"
 #include "ptnet/transfer.hpp"
 #include "support/memory_source.hpp"
+#include "train/source.hpp"
 #include "train_synthetic.hpp"
 #include "train/window_index.hpp"
 

@@ -10,6 +10,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/viz.hpp"
 #include "support/synthetic_walk.hpp"
+#include "viz/viz_internal.hpp"
 
 namespace ptnet {
 namespace {

@@ -7,7 +7,7 @@
 //
 //   auto bodies = ptnet::sample_bodies(8, 8, 2, 2, /*seed=*/1);  // the paper's 16 + 4
 //
-// Model (docs/anthropometry.md, include/ptnet/anthropometry.hpp):
+// Model (docs/anthropometry.md):
 //  - segment lengths come from the pose (the canonical skeleton scaled by
 //    height, Drillis & Contini 1966); segment masses are sex-specific fractions
 //    of body weight (de Leva 1996), normalised to sum exactly to the weight;
@@ -42,7 +42,6 @@ enum Segment : int {
   kSegRightThigh, kSegRightShank, kSegRightFoot,
   kSegmentCount
 };
-const char* segment_name(int segment);  // "head_neck", "left_thigh", ...
 
 // How a segment's end points follow the pose. The proximal end is
 // pose[joint_a]; the distal end is pose[joint_b], moved on by extension_m

@@ -52,13 +52,8 @@ BodySpec parse_body_fields(const std::string& file, long line, const std::string
                            const std::string& height_cm, const std::string& weight_kg);
 
 std::vector<BodySpec> read_bodies_csv(const std::string& path);
-// The same on CSV text (`source` names it in messages).
-std::vector<BodySpec> parse_bodies_csv(const std::string& text, const std::string& source);
 std::string format_bodies_csv(const std::vector<BodySpec>& bodies);
 
-// Standard normal by Box-Muller on raw 53-bit uniforms: the same numbers on
-// every platform (std::normal_distribution is implementation-defined).
-double standard_normal(std::mt19937_64& rng);
 // The body `height_sd` and `weight_sd` standard deviations from the mean of
 // the paper's distribution for `sex` (paper.hpp), clamped to the accepted
 // range, rounded to 0.1.

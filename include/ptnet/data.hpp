@@ -60,13 +60,6 @@ struct SequenceMeta {
   bool floor = false;     // filled by Dataset::open: /floor/<name> exists
 };
 
-// True when a sequence at `fps` belongs in a dataset at `dataset_fps`: the
-// same rate up to rounding (1e-9 relative). DatasetWriter::add requires it;
-// simulate_dataset checks every clip before simulating any.
-inline bool same_fps(double fps, double dataset_fps) {
-  return std::abs(fps - dataset_fps) <= 1e-9 * dataset_fps;
-}
-
 class DatasetWriter {
  public:
   DatasetWriter(const std::string& path, const DatasetInfo& info,

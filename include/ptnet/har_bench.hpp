@@ -15,7 +15,7 @@
 // The design: every clip is performed by a *recorded* population (bodies
 // of band "mid") and a *deployment* population (bands outside it), all read
 // by one degraded sensor (the stand-in's, StandinOptions). Each clip's
-// frames are cut in time (split_clip) into a training part and a test part
+// frames are cut in time into a training part and a test part
 // with a gap of one window. A classifier learns from the recorded bodies'
 // training parts plus, per source, the same number of windows for the
 // deployment bodies (transfer, copy, weight ratio, body scale, or the
@@ -38,44 +38,10 @@
 
 namespace ptnet::har {
 
-// A population of bodies: stature and body-mass-index ranges, both sexes.
-struct BodyBand {
-  std::string name;
-  double height_min_cm = 0, height_max_cm = 0;
-  double bmi_min = 0, bmi_max = 0;
-};
-
-// The named bands (docs/har_bench.md, "Bands"): mid (the recorded
-// population, 160-178 cm, BMI 20-25); the deployment bands small (short and
-// light), large (tall and heavy), xsmall and xlarge (further out),
-// short-light and tall-heavy (milder), light and heavy (build alone), short
-// and tall (size alone); all (the transfer model's training bodies,
-// covering every other band).
-const std::vector<BodyBand>& body_bands();
-const BodyBand& body_band(const std::string& name);  // throws Error listing the names
-// The bands a deployment population may come from: every band but mid (the
-// recorded population) and all (the transfer model's training bodies).
+// The bands a deployment population may come from (docs/har_bench.md,
+// "Bands"): every band but mid (the recorded population) and all (the
+// transfer model's training bodies).
 std::vector<std::string> deployment_band_names();
-
-// `count` bodies of a band, ids <prefix>1.., sexes alternating (female
-// first), stature and BMI from a Latin hypercube over the band (each of the
-// `count` strata of both used once, seeded), weight = BMI x stature^2,
-// rounded to 0.1; role as given.
-std::vector<BodySpec> band_bodies(const BodyBand& band, int count, std::uint64_t seed,
-                                  const std::string& prefix, const std::string& role);
-
-// A clip of `frames` frames cut in time: windows of its training part lie
-// in [0, train_end), of its test part in [test_begin, frames), test_begin =
-// train_end + one window (the gap). The test part is the last
-// kTestFraction of the frames after the gap, at least one window; the
-// training part must hold one window too, else usable() is false (clips
-// shorter than 3 windows).
-struct ClipSplit {
-  int frames = 0, train_end = 0, test_begin = 0;
-  bool usable() const { return train_end >= kWindowFrames && frames - test_begin >= kWindowFrames; }
-};
-inline constexpr double kTestFraction = 0.3;
-ClipSplit split_clip(int frames);
 
 inline StandinOptions follow_sensor() {
   StandinOptions s;
@@ -149,10 +115,6 @@ struct BenchOptions {
 // atomically; refuses to overwrite without force.
 void write_bench_training_set(const std::string& path, const BenchOptions& options, int bodies, bool force);
 
-// Throws Error naming `path` unless it is a training set that
-// write_bench_training_set wrote for the same clips with the same split.
-void check_bench_training_set(const std::string& path, const BenchOptions& options);
-
 // One training source's classifiers for one label kind.
 struct BenchSource {
   std::string name;                   // recorded, model, ..., oracle
@@ -210,12 +172,6 @@ struct BenchResult {
 // activities were named), fewer than 2 activities, or a model_data that is
 // not a training set of these clips.
 BenchResult run_bench(const BenchOptions& options, const TransferFn& transfer);
-
-// A source's runs against a baseline's, run by run (throws Error for
-// unequal or no runs): their macro_f1, or two series of per-run macro F1.
-BenchComparison compare_runs(const BenchSource& source, const BenchSource& baseline);
-BenchComparison compare_runs(const std::string& source, const std::vector<double>& source_f1,
-                             const std::string& baseline, const std::vector<double>& baseline_f1);
 
 std::string format_bench(const BenchResult& result);  // the tables as text
 std::string bench_json(const BenchResult& result);    // results.json (pretty)

@@ -60,10 +60,6 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kM
 // "a socket", "a character device", "a block device", "a regular file".
 const char* file_kind(unsigned mode);
 
-// The error of an input that cannot be opened, from its errno: "no such
-// file" (ErrorKind::not_found) or "cannot open: REASON" (ErrorKind::io).
-Error open_error(const std::string& path, int err);
-
 // Throws Error naming `path` unless it is a regular file (symbolic links
 // followed): "x.npy: is a FIFO, expected a regular file". For inputs whose
 // size is checked before they are read: a FIFO would block, a device
@@ -80,10 +76,6 @@ void note_input(const std::string& path);
 // exists; pass force to overwrite", or "... overwrite or ALTERNATIVE" (a
 // model folder: "resume to continue").
 Error exists_error(const std::string& path, const std::string& alternative = "");
-
-// The one overwrite rule of every output: throws exists_error(path) if
-// `path` exists and `force` is false.
-void check_overwrite(const std::string& path, bool force);
 
 // True if folder `path` exists, false if nothing does; throws Error
 // "PATH: exists and is not a folder" otherwise.
@@ -104,7 +96,7 @@ void make_folder(const std::string& path);
 
 // The outputs `files` of a run to be written into folder `dir` (which may
 // not exist yet), before the run: `dir` is no file (existing_folder) and
-// each file needs `force` if it exists (check_overwrite).
+// each file needs `force` if it exists.
 void check_outputs_in_folder(const std::string& dir, const std::vector<std::string>& files, bool force);
 
 class AtomicFile {
@@ -156,8 +148,6 @@ void write_text_file(const std::string& path, const std::string& text, bool forc
 // least 4). More only adds scheduling overhead and memory.
 int max_threads();
 
-// Bytes of memory available to this process now (MemAvailable), or 0 if unknown.
-std::uint64_t available_memory_bytes();
 // Throws Error "FILE: WHAT needs 12 GB, more than the 3.1 GB of available
 // memory" when `bytes` exceed the available memory.
 void check_memory(std::uint64_t bytes, const std::string& file, const std::string& what);

@@ -51,12 +51,9 @@ struct Trc {
   int find(std::string_view name) const;  // -1 if absent
 };
 
-// Parses .trc text; errors are one line "walk.trc:7: expected 125 values
+// Reads a .trc file; errors are one line "walk.trc:7: expected 125 values
 // (Frame#, Time, 41 markers x 3), found 80".
-Trc parse_trc(std::string_view text, const std::string& source);
 Trc read_trc(const std::string& path);
-// True for a path ending in .trc (any case): load_motion reads it as markers.
-bool is_trc_path(const std::string& path);
 
 // ------------------------------------------------------------ marker maps
 
@@ -70,21 +67,11 @@ struct MarkerMap {
   std::vector<MarkerMapEntry> entries;
 };
 
-// The map file format (docs/markers.md): lines "landmark = name name ...",
-// '#' comments, "map = NAME" optional. Unknown landmarks are errors that
-// list the known ones.
-MarkerMap parse_marker_map(std::string_view text, const std::string& source);
-// A shipped map by name ("delaware", "plugin-gait", "common") or a map file.
+// A shipped map by name ("delaware", "plugin-gait", "common") or a map file
+// (docs/markers.md: lines "landmark = name name ...", '#' comments, "map =
+// NAME" optional; unknown landmarks are errors that list the known ones).
 MarkerMap marker_map(const std::string& name_or_path);
 std::vector<std::string> marker_map_names();  // the shipped maps
-std::string marker_map_text(const std::string& name);  // a shipped map's file text
-
-// The landmarks a map can name (docs/markers.md): pelvis r_asis, l_asis,
-// r_psis, l_psis, sacrum; per side (r_, l_) knee_lat, knee_med, ankle_lat,
-// ankle_med, heel, mt1, mt5, toe, toe_tip, shoulder, elbow_lat, elbow_med,
-// wrist_lat, wrist_med, head_front, head_back, temple and the tracking sets
-// thigh, shank, foot; trunk c7, t10, clav, sternum, head_top.
-const std::vector<std::string>& landmark_names();
 
 // ------------------------------------------------------- markers -> joints
 

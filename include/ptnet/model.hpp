@@ -23,7 +23,8 @@
 // conditional U-Net on its own, with `context` frames on each side as extra
 // input channels, and the result is added to the frame. Its input window
 // carries those neighbours: x [N, T + 2 context, H, W] -> [N, T, H, W]
-// (input_margin, model_config.hpp; with_margin pads a whole sequence).
+// (input_margin, model_config.hpp; a whole sequence is padded with copies
+// of its first and last frames).
 // Every convolution is followed by BatchNorm (no affine) and a FiLM
 // modulation (1 + gamma, beta) computed by a small MLP from the source
 // and target attributes, so the body attributes act at every scale:
@@ -150,15 +151,6 @@ class InferenceNet {
   std::vector<float> pair_key_;   // the (source, target) attributes folded_ is for
   std::vector<Layer> folded_;     // conv0-5 with BN and FiLM folded
 };
-
-// Arch::frame's input frames: x [N, T + 2 context, H, W] -> [N*T, 1 + 2
-// context, H, W], each of the T centre frames with `context` neighbours on
-// each side (the network's first layer reads them as channels).
-torch::Tensor frame_inputs(const torch::Tensor& x, int context);
-// A whole sequence [T, H, W] with `margin` copies of its first frame before
-// and of its last after: [T + 2 margin, H, W], the input that gives every
-// frame of the sequence its context.
-torch::Tensor with_margin(const torch::Tensor& frames, int margin);
 
 // ModelConfig::mirror: (forward(x) + mirror(forward(mirror(x)))) / 2, mirror
 // the flip of the last dimension (the mat's columns). `forward` maps

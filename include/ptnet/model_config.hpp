@@ -54,8 +54,6 @@ inline constexpr std::uint64_t kMaxConfigBytes = std::uint64_t(16) << 20;  // co
 // trains on single frames (window 1). With `contact` it also predicts which
 // cells are in contact (ModelConfig::contact).
 enum class Arch { faithful, skip, residual, frame };
-inline bool has_skips(Arch arch) { return arch == Arch::skip || arch == Arch::residual; }
-inline bool is_residual(Arch arch) { return arch == Arch::residual || arch == Arch::frame; }
 
 // What the network sees of the source window. none: the recorded maps (the
 // paper). zoom: the maps aligned to the target body first, zoomed by the
@@ -112,8 +110,6 @@ inline constexpr ModelConfigRanges kModelConfigRanges{};
 
 // Throws Error ("model: channels must be in 1-4096, found 0") for impossible values.
 void validate(const ModelConfig& config);
-// Rows and cols after `level` poolings (level 0 = input): ceil halving.
-std::array<int, 2> pooled_size(const ModelConfig& config, int level);
 
 // The cost model (src/model/cost_model.cpp).
 // Closed-form number of trainable parameters (equals the module's count).
@@ -122,8 +118,6 @@ std::int64_t parameter_count(const ModelConfig& config);
 // allocating): float32 weights, with `training` their gradients and Adam's
 // two moments, plus the activations of `batch` windows (x 2 for backward).
 std::uint64_t model_memory_bytes(const ModelConfig& config, int batch, bool training);
-// Multiply-adds x 2 of one forward pass over one window (convolutions + FC).
-double forward_flops(const ModelConfig& config);
 
 // Attribute and pressure normalisation, fitted on the training bodies/frames.
 struct Normalisation {
@@ -197,12 +191,9 @@ void record_digest(ModelDir& dir, const std::string& file, const std::string& di
 
 // config.json (src/model/config_json.cpp).
 nlohmann::json to_json(const ModelConfig& config);
-ModelConfig model_config_from_json(const nlohmann::json& j, const std::string& where);
 nlohmann::json to_json(const ModelDir& dir);
 // Reads and validates DIR/config.json (format, version, fields); throws Error
 // naming the file ("model/config.json: missing field \"normalisation\"").
 ModelDir read_model_dir(const std::string& dir);
-// The same on config.json's text; `path` names it, `dir` is the folder.
-ModelDir parse_model_config(const std::string& text, const std::string& path, const std::string& dir);
 
 }  // namespace ptnet

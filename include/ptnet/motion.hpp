@@ -53,11 +53,9 @@ struct Bvh {
   int find(std::string_view joint_name) const;  // -1 if absent
 };
 
-// Parses BVH text. `source` names the file in errors, which are one line:
+// Reads a BVH file. Errors are one line, naming the file:
 // "walk.bvh:42: expected CHANNELS, found OFFSET".
-Bvh parse_bvh(std::string_view text, const std::string& source);
 Bvh read_bvh(const std::string& path);
-std::string format_bvh(const Bvh& bvh);
 // Atomic write (temporary file + rename); refuses to overwrite unless force.
 void write_bvh(const Bvh& bvh, const std::string& path, bool force);
 
@@ -74,13 +72,6 @@ const char* units_name(Units units);
 // standing height so that it falls in a human range.
 double metres_per_unit(const Bvh& bvh, Units units, UpAxis up);
 
-// World positions of every BVH joint (not end sites) for every frame:
-// [F][J], metres, z up. `scale` is metres per file unit.
-std::vector<Eigen::Vector3d> forward_kinematics(const Bvh& bvh, double scale, UpAxis up);
-// The same for one frame (J positions appended to `out`).
-void forward_kinematics_frame(const Bvh& bvh, int frame, double scale, UpAxis up,
-                              std::vector<Eigen::Vector3d>& out);
-
 // -------------------------------------------------------- canonical joints
 
 enum Joint : int {
@@ -92,7 +83,6 @@ enum Joint : int {
   kJointCount
 };
 const char* joint_name(int joint);             // "pelvis", "left_hip", ...
-int joint_parent(int joint);                   // -1 for the pelvis
 
 // Index of the BVH joint for each canonical joint. Recognises CMU, Character
 // Creator (CC_Base_*), Mixamo (mixamorig:*), SMPL (L_Hip ...), Vicon /
@@ -124,8 +114,9 @@ struct MotionOptions {
   // frame: its Frame Time is that rate written with a few digits (0.033333
   // s is 30.0003 fps, 0.016667 s 59.9988, .0083333 s 120.0005).
   double fps = kFps;
-  // A treadmill's belt is detected and removed (treadmill_belt_velocity), so
-  // that a treadmill trial is simulated as the same gait overground.
+  // A treadmill's belt is detected (the lower foot sliding backwards at over
+  // 0.3 m/s while the pelvis stays) and removed, so that a treadmill trial
+  // is simulated as the same gait overground.
   bool remove_belt = true;
   // Marker files (.trc, ptnet/markers.hpp): a shipped map's name or a map
   // file ("": the shipped map that places the file), a static trial that
@@ -143,26 +134,14 @@ inline constexpr Range kReadFpsRange{0, 4000, true};
 bool is_tpose(const Bvh& bvh, int frame, const std::array<int, kJointCount>& map, double scale,
               UpAxis up);
 
-// Resamples every channel to `fps`: positions linearly, each joint's rotation
-// by quaternion slerp (Euler angles rewritten in the joint's channel order).
-Bvh resample(const Bvh& bvh, double fps);
-
 // Reads, maps, drops a leading T-pose, resamples, and runs FK; then grounds:
 // Throws Error for an options.fps that is neither a finite number <= 0 nor
 // in kReadFpsRange (NaN, infinity).
 // shifts z so that the floor (lower quartile over frames of the lowest foot
-// point, lowest_foot_z) is at z = 0. Name: the file stem.
+// point: heel or toe tip) is at z = 0. Name: the file stem.
 Motion motion_from_bvh(const Bvh& bvh, const MotionOptions& options);
 // A BVH file, or a marker file for a path ending in .trc (motion_from_trc).
 Motion load_motion(const std::string& path, const MotionOptions& options);
-
-// The velocity (world x, y; m/s) of a treadmill belt under `motion`: the
-// median horizontal velocity of the lower foot over the frames where it is
-// near the floor, when that is over 0.3 m/s while the pelvis travels less
-// than a third as fast; zero for a motion overground.
-Eigen::Vector2d treadmill_belt_velocity(const Motion& motion);
-// The motion as if overground: every joint moved by -velocity * t.
-Motion without_belt(Motion motion, const Eigen::Vector2d& velocity);
 
 // Standing height (m) of the first frames: top of head (head joint plus head
 // length) above the lowest foot point.
@@ -170,17 +149,13 @@ double standing_height(const Motion& motion);
 
 // -------------------------------------------------------- canonical skeleton
 
-// Canonical bone offsets (parent -> joint) in the rest pose, world axes,
-// from anthropometric proportions of `height_cm` (arms hanging down).
-Pose canonical_rest_offsets(double height_cm);
-
 // Retargets onto a body of `height_cm`: every bone keeps its world direction
 // per frame (joint rotations kept, up to bone twist) and takes the target's
 // length; the pelvis (spine, hips) and chest (neck, shoulders) groups are
 // placed rigidly by the frame of their source bones; the root's horizontal
 // displacement from frame 0 and its height scale with leg length; the motion
 // is re-grounded so that the lowest foot point during stance (5th percentile
-// of lowest_foot_z over frames) is at z = 0. Throws Error for an empty motion
+// over frames of the lowest heel or toe tip) is at z = 0. Throws Error for an empty motion
 // or a height outside 50-250 cm.
 Motion retarget(const Motion& motion, double height_cm);
 
@@ -198,8 +173,6 @@ double retarget_scale(const Motion& motion, double height_cm);
 // positions within 1e-4 m.
 Bvh motion_to_bvh(const Motion& motion);
 
-// Lowest point of the foot soles (heel, toe tip) for one pose, z (m).
-double lowest_foot_z(const Pose& pose);
 // The pitch (rad, ~0.36) below the horizontal of the canonical ankle -> toe
 // joint bone of a foot standing flat: the ankle 0.039 H and the toe joint
 // 0.009 H above the sole, 0.079 H apart.
@@ -239,10 +212,8 @@ struct GenerateOptions {
 // [1, 1000], performer or take < 1.
 Motion generate_motion(const GenerateOptions& options);
 
-// Height (cm) and sex of a procedural performer (deterministic in `performer`).
+// Height (cm) of a procedural performer (deterministic in `performer`; the
+// sexes alternate, each performer drawn from its sex's stature).
 double performer_height_cm(int performer, std::uint64_t seed = 0);
-// Sex of a procedural performer, 0 female, 1 male (alternating with
-// `performer`); performer_height_cm draws from that sex's stature.
-int performer_sex(int performer, std::uint64_t seed = 0);
 
 }  // namespace ptnet

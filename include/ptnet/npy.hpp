@@ -1,7 +1,6 @@
 // ptnet/npy.hpp: a tiny NumPy .npy reader/writer for float32 arrays (the
 // `--in x.npy` / `--out y.npy` form of `ptnet transfer`).
 //
-//   ptnet::NpyArray a = ptnet::read_npy("walk.npy");   // validated: <f4, C order
 //   ptnet::PressureSequence s = ptnet::read_npy_sequence("walk.npy", mat, 30);
 //   ptnet::write_npy_sequence("out.npy", s, /*force=*/false);  // [T, rows, cols]
 //
@@ -22,21 +21,10 @@ inline constexpr std::uint64_t kMaxNpyBytes = std::uint64_t(64) << 30;  // 64 Gi
 // Largest .npy header (numpy writes 64-128 bytes).
 inline constexpr std::size_t kMaxNpyHeaderBytes = std::size_t(1) << 20;  // 1 MiB
 
-struct NpyArray {
-  std::vector<std::int64_t> shape;
-  std::vector<float> data;  // C order
-};
-
-// Throws Error naming the file: bad magic, dtype other than float32, Fortran
-// order, data of another size than the shape's. Reads the header, then only
-// the data the shape announces (checked against the available memory),
-// straight into the array.
-NpyArray read_npy(const std::string& path);
-// The same on the bytes of a file (`name` names it in messages).
-NpyArray parse_npy(const std::string& bytes, const std::string& name);
 // The header of a .npy file or stream: its shape and where the data start.
 // `bytes` holds at least the header (the data need not follow: a stream's
-// shape may promise more frames than will come). Throws Error as parse_npy.
+// shape may promise more frames than will come). Throws Error naming the
+// file: bad magic, dtype other than float32, Fortran order.
 struct NpyHeader {
   std::vector<std::int64_t> shape;
   std::size_t data_offset = 0;  // header bytes, magic included
@@ -45,8 +33,6 @@ NpyHeader parse_npy_header(const std::string& bytes, const std::string& name);
 // The header's size in bytes from the file's first 12 bytes (10 suffice for
 // version 1). Throws Error for a missing magic or an unknown version.
 std::size_t npy_header_size(const std::string& first_bytes, const std::string& name);
-// Atomic write; refuses to overwrite unless force.
-void write_npy(const std::string& path, const NpyArray& array, bool force);
 
 // A [T, rows, cols] float32 array as a sequence on `mat` (rows/cols must
 // match: "x.npy: expected shape [T, 80, 28], found [100, 64, 28]"); NaN or

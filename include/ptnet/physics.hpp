@@ -1,7 +1,6 @@
 // ptnet/physics.hpp: the simulator's ground reaction forces, and the
 // simulator checked against real force plates.
 //
-//   ptnet::ForcePlates fp = ptnet::read_grf_mot("walk_grf.mot");   // OpenSim plates [N, P]
 //   auto trials = ptnet::read_gait_trials("bench/real-gait.csv", "real-gait");
 //   ptnet::GaitTrialResult r = ptnet::run_gait_trial(trials[0], {});  // plates vs simulator vs naive
 //   ptnet::write_physics_report({r}, "physics", /*force=*/false);     // results.json + index.html
@@ -24,26 +23,6 @@
 
 namespace ptnet {
 
-// ------------------------------------------------------------ force plates
-
-// Force plates of an OpenSim storage file (.mot / .sto: a header ending in
-// "endheader", named columns, one row per sample). A plate is every group of
-// columns PREFIX + vx vy vz px py pz whose prefix holds "force"
-// ("ground_force_", "1_ground_force_", "ground_force_r_"); other columns are
-// ignored. Lab axes and units as the file (N, m).
-struct ForcePlates {
-  struct Plate {
-    std::string prefix;
-    std::vector<Eigen::Vector3d> force_n;  // [N]
-    std::vector<Eigen::Vector3d> cop_m;    // [N]
-  };
-  std::vector<double> time_s;  // [N], increasing
-  std::vector<Plate> plates;   // [P]
-  std::string source;
-};
-ForcePlates parse_grf_mot(std::string_view text, const std::string& source);
-ForcePlates read_grf_mot(const std::string& path);
-
 // ------------------------------------------------------------------ gait
 
 // One foot's contact: a run of samples above the contact threshold, its
@@ -56,9 +35,6 @@ struct Contact {
   double loading_rate_n_s = 0;   // 20 % -> 80 % of the peak on the rising edge, over its duration
   bool whole = true;             // begins and ends inside the series (false: cut by its first or last sample)
 };
-// The contacts of a force series (time_s and force_n of equal length).
-std::vector<Contact> find_contacts(const std::vector<double>& time_s, const std::vector<double>& force_n,
-                                   double threshold_n, int foot);
 
 // A trial of a gait lab: markers, plates and the subject.
 struct GaitTrial {

@@ -244,19 +244,6 @@ void write_force_table(const ForceTable& table, const std::string& path, bool fo
 PressureSequence simulate(const Motion& motion, const Body& body, const SimOptions& options,
                           const MotionPlacement& placement, std::vector<FrameTrace>* trace = nullptr);
 
-// simulate() with a given placement, read by the sensor model once per seed
-// of `seeds` (options.seed is not used): result k is, bit for bit,
-// simulate(motion, body, options with seed = seeds[k], placement), for the
-// cost of one simulation plus the sensor model per seed.
-std::vector<PressureSequence> simulate_reads(const Motion& motion, const Body& body, const SimOptions& options,
-                                             const MotionPlacement& placement,
-                                             const std::vector<std::uint64_t>& seeds,
-                                             std::vector<FrameTrace>* trace = nullptr);
-
-// Total vertical load (N) per frame, F = m (g + a_z) clamped at 0 (before the
-// contact test): [T], N.
-std::vector<double> vertical_load(const Motion& motion, const Body& body, double com_filter_hz);
-
 // One simulation job for simulate_many.
 struct SimJob {
   const Motion* motion = nullptr;  // on this body
@@ -265,7 +252,7 @@ struct SimJob {
   const MotionPlacement* placement = nullptr;  // null: place_motion(*motion, options)
   // The same pressure read again by the sensor with each of these seeds (the
   // noise-floor copies of simulate_dataset), for the cost of the sensor
-  // model alone (simulate_reads); into simulate_many's *rereads.
+  // model alone; into simulate_many's *rereads.
   std::vector<std::uint64_t> reread_seeds;
 };
 

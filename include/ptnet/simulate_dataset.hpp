@@ -22,7 +22,7 @@
 // and every body's copy gets that placement scaled by retarget_scale, so the
 // copies of one motion differ by body scale, not by where they lie.
 // Sequences on bodies with role "original" (the test bodies) are also read
-// by the sensor with a second seed, floor_seed(seed, name) (simulate_reads), into
+// by the sensor with a second seed, floor_seed(seed, name), into
 // /floor/<name>: the noise floor that `ptnet evaluate` reports.
 #pragma once
 
@@ -86,25 +86,14 @@ struct ClipRow {
 // positive integer, found 'x'"; a row whose file does not exist is
 // "clips.csv:5: clip file 'missing.bvh' not found".
 std::vector<ClipRow> read_clips_csv(const std::string& path);
-// The same on CSV text; files are resolved against `path`'s folder.
-std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string& path);
-
-// A category guessed from a file name: the stem contains walk, rom/range/
-// exercise, dance/freestyle or act(ing); "" if none.
-std::string category_from_name(const std::string& path);
-
-// A category guessed from the motion itself: "walking" when the pelvis
-// travels steadily (mean horizontal speed 0.4-2.5 m/s over a path of
-// >= 1.5 m), else "freestyle".
-std::string category_from_motion(const Motion& motion);
 
 // The clips of BVH `inputs` (files, or folders searched recursively for
 // *.bvh, sorted by path). With `clips_csv`, every input must be listed there
 // (error naming the first that is not) and its row supplies the metadata;
 // with no inputs, every row of the CSV is a clip. Without it: motion_id =
 // the file stem, performer = the parent folder's name, category from the
-// name (category_from_name; else "" and guessed from the motion when
-// loaded), take 1. `defaults` gives units, up axis and fps for files the CSV
+// name (its stem containing walk, rom/range/exercise, dance/freestyle or
+// act(ing); else "" and guessed from the motion when loaded), take 1. `defaults` gives units, up axis and fps for files the CSV
 // does not describe. Throws Error for a missing input, an empty folder, or
 // two clips with the same motion_id.
 std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,

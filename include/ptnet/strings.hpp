@@ -27,7 +27,6 @@ std::vector<std::string> split_list(std::string_view text);
 std::vector<std::string> split_blanks(std::string_view text);
 // The items joined with `sep`.
 std::string join(const std::vector<std::string>& items, std::string_view sep = ",");
-bool starts_with(std::string_view s, std::string_view prefix);
 bool ends_with(std::string_view s, std::string_view suffix);
 // A finite number that is the whole (trimmed) text; false otherwise (value unchanged).
 bool parse_number(std::string_view text, double& value);

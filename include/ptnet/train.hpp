@@ -59,13 +59,6 @@ class PressureSource {
 // binary was built without the data stage.
 std::unique_ptr<PressureSource> open_dataset_source(const std::string& path);
 
-// FNV-1a 64 digest (16 hex digits) of the source's metadata: mat, bodies and
-// each sequence's name, body, motion, take and frame count.
-std::string source_digest(const PressureSource& source);
-
-// True for what the paper trains on: role "retargeted" and take 1.
-bool is_training_sequence(const BodySpec& body, const SequenceMeta& meta);
-
 // The lazy window index, the normalisation fit and the sequence cache behind
 // train() are internals: src/train/window_index.hpp.
 

@@ -46,17 +46,6 @@ struct Image {
   void blit(const Image& src, int x, int y);
 };
 
-// Viridis colour map: t in [0, 1] (clamped) -> one of its 256 entries.
-Rgb viridis(double t);
-// The same map quantised to `levels` (2-256) evenly spaced entries.
-Rgb viridis(double t, int levels);
-
-// Built-in 5 x 7 bitmap font (ASCII 32-126). Each glyph takes 6 x 8 pixels
-// times `scale`; other characters are drawn as '?'.
-void draw_text(Image& image, int x, int y, const std::string& text, Rgb colour, int scale = 1);
-int text_width(const std::string& text, int scale = 1);
-inline int text_height(int scale = 1) { return 8 * scale; }
-
 // Writers (atomic, see io.hpp; refuse to overwrite without force).
 void write_png(const std::string& path, const Image& image, bool force);
 // Frames of one size; delays in hundredths of a second, one per frame. Loops forever.
@@ -77,26 +66,12 @@ struct FigurePanel {
   const PressureSequence* sequence = nullptr;
 };
 
-// The frames a figure shows: frame_list, else `count` evenly spaced over
-// [0, frames) including the first and last. Throws Error for indices out of range.
-std::vector<int> figure_frames(const FigureOptions& options, int frames, int default_count);
-
-// The colour-scale top the figure uses: options.vmax_kpa, or the data max
-// rounded up to a tick step (1, 2, 2.5 or 5 x 10^k).
-double figure_vmax(const std::vector<FigurePanel>& panels, const FigureOptions& options);
-
-// Per-frame centre of pressure in cell coordinates (row, col of cell centres
-// = index + 0.5); NaN for frames with no load. [T] pairs.
-std::vector<std::pair<double, double>> centre_of_pressure(const PressureSequence& sequence);
-
 // One row per panel, one column per frame, colour bar on the right.
 Image render_strip(const std::vector<FigurePanel>& panels, const FigureOptions& options);
 // Panels side by side; one image per shown frame, with delays (1/100 s) that
 // follow the sequence's real frame rate.
 std::vector<Image> render_animation(const std::vector<FigurePanel>& panels,
                                     const FigureOptions& options, std::vector<int>* delays_cs);
-// A vertical colour bar [0, vmax] kPa with tick labels and a "kPa" caption.
-Image render_colour_bar(double vmax_kpa, int bar_height_px, int text_scale);
 
 // Reads the named sequences and writes `out_path` (.png strip or .gif animation).
 void render_figure(const Dataset& dataset, const std::vector<std::string>& sequences,
@@ -107,9 +82,6 @@ void render_figure(const Dataset& dataset, const std::vector<std::string>& seque
 // Charts are standalone SVG documents (width and height set, so an <img>
 // shows them; text escaped). Report pages are offline HTML: no script or
 // style from the network, images beside the page.
-
-// The tick step of an axis: 1, 2, 2.5 or 5 x 10^k, the smallest >= raw.
-double nice_step(double raw);
 
 struct BarSeries {
   std::string name;            // legend entry
@@ -135,9 +107,6 @@ struct LineChart {
   bool points = true;  // a dot (with its value as a tooltip) at every point; false for dense series
 };
 std::string svg_line_chart(const LineChart& chart);
-
-// The colour of series i in every chart (a qualitative palette, cycling), as "#rrggbb".
-std::string chart_colour(int i);
 
 // &, <, >, " and ' as entities: safe in HTML and SVG text and attributes.
 std::string html_escape(const std::string& text);

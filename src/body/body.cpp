@@ -7,18 +7,12 @@
 
 #include <Eigen/Geometry>
 
+#include "core/anthropometry.hpp"
 #include "foot_sole.hpp"
-#include "ptnet/anthropometry.hpp"
 #include "ptnet/error.hpp"
 
 namespace ptnet {
 namespace {
-
-constexpr const char* kSegmentNames[kSegmentCount] = {
-    "head_neck",       "upper_trunk",    "middle_trunk",     "lower_trunk",
-    "left_upper_arm",  "left_forearm",   "left_hand",        "right_upper_arm",
-    "right_forearm",   "right_hand",     "left_thigh",       "left_shank",
-    "left_foot",       "right_thigh",    "right_shank",      "right_foot"};
 
 // Volume (m^3) of a tapered capsule: a conical frustum of length `length`
 // between end radii ra, rb, closed by two hemispheres.
@@ -105,10 +99,6 @@ std::array<SolePatch, 2> foot_patches(const SoleSurface& sole, const Eigen::Vect
 }
 
 }  // namespace
-
-const char* segment_name(int segment) {
-  return segment >= 0 && segment < kSegmentCount ? kSegmentNames[segment] : "?";
-}
 
 double Body::bmi() const { return mass_kg() / (height_m() * height_m()); }
 

@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 
 namespace ptnet::detail {
 namespace {

@@ -7,7 +7,8 @@
 #include <cstdio>
 #include <set>
 
-#include "ptnet/csv.hpp"
+#include "core/body_spec_internal.hpp"
+#include "core/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"

@@ -1,6 +1,6 @@
-// RFC 4180 CSV reader (ptnet/csv.hpp): a character state machine, linear in
+// RFC 4180 CSV reader (core/csv.hpp): a character state machine, linear in
 // the text size.
-#include "ptnet/csv.hpp"
+#include "core/csv.hpp"
 
 #include <algorithm>
 #include <cctype>

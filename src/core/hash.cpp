@@ -1,5 +1,5 @@
-// FNV-1a 64 (ptnet/hash.hpp).
-#include "ptnet/hash.hpp"
+// FNV-1a 64 (core/hash.hpp).
+#include "core/hash.hpp"
 
 #include <cstdio>
 

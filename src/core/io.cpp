@@ -17,6 +17,7 @@
 #include <mutex>
 #include <thread>
 
+#include "core/io_internal.hpp"
 #include "ptnet/error.hpp"
 
 namespace ptnet {
@@ -251,7 +252,9 @@ bool existing_folder(const std::string& path) {
   return true;
 }
 
-void check_overwrite(const std::string& path, bool force) {
+// The one overwrite rule of every output: throws exists_error(path) if
+// `path` exists and `force` is false.
+static void check_overwrite(const std::string& path, bool force) {
   std::error_code ec;
   if (!force && fs::exists(path, ec)) throw exists_error(path);
 }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "core/npy_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"

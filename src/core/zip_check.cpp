@@ -1,6 +1,6 @@
-// Zip archive verification (ptnet/zip_check.hpp). Every offset and size read
+// Zip archive verification (core/zip_check.hpp). Every offset and size read
 // from the file is bounds-checked before use.
-#include "ptnet/zip_check.hpp"
+#include "core/zip_check.hpp"
 
 #include <zlib.h>
 

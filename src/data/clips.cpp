@@ -10,7 +10,8 @@
 #include <set>
 #include <sstream>
 
-#include "ptnet/csv.hpp"
+#include "core/csv.hpp"
+#include "data/data_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"

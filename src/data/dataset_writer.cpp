@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "data/data_internal.hpp"
 #include "data/deflate_chunks.hpp"
 #include "data/h5_util.hpp"
 #include "ptnet/data.hpp"

@@ -14,12 +14,13 @@
 #include <thread>
 #include <nlohmann/json.hpp>
 
+#include "core/parallel.hpp"
+#include "core/zip_check.hpp"
+#include "data/data_internal.hpp"
 #include "ptnet/body.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"
-#include "ptnet/zip_check.hpp"
-#include "core/parallel.hpp"
 
 namespace ptnet {
 namespace {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "eval/eval_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"

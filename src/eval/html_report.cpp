@@ -14,7 +14,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "ptnet/csv.hpp"
+#include "core/csv.hpp"
+#include "eval_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"

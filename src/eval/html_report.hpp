@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/eval_internal.hpp"
 #include "ptnet/eval.hpp"
 
 namespace ptnet {

@@ -6,6 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "eval_internal.hpp"
 #include "html_report.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"

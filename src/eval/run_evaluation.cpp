@@ -1,6 +1,7 @@
 // The whole evaluate step: model, test pairs, table, report (eval.hpp).
 #include <filesystem>
 
+#include "eval_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"

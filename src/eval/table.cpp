@@ -6,7 +6,8 @@
 #include <map>
 #include <sstream>
 
-#include "ptnet/csv.hpp"
+#include "core/csv.hpp"
+#include "eval/eval_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
 #include "ptnet/strings.hpp"

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "bench_internal.hpp"
+#include "har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/eval.hpp"
 #include "ptnet/sim.hpp"

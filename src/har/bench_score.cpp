@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "bench_internal.hpp"
+#include "har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/strings.hpp"
 

@@ -12,6 +12,7 @@
 #include <numeric>
 #include <random>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "har/har_internal.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"

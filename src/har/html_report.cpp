@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"

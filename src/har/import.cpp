@@ -8,8 +8,9 @@
 #include <set>
 #include <sstream>
 
+#include "core/csv.hpp"
+#include "har/har_internal.hpp"
 #include "ptnet/body_spec.hpp"
-#include "ptnet/csv.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 

@@ -8,6 +8,7 @@
 #include <map>
 #include <numeric>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <type_traits>
 
+#include "model/model_config_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model_config.hpp"

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "model/model_config_internal.hpp"
 #include "ptnet/model_config.hpp"
 
 namespace ptnet {

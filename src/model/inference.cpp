@@ -19,6 +19,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/model_config_internal.hpp"
+#include "model/model_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/model.hpp"
 

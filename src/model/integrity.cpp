@@ -1,7 +1,7 @@
 // Digests of the weights (ptnet/model.hpp), recorded in config.json's
 // "integrity" (integrity_record.cpp) and checked on load.
+#include "core/hash.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/hash.hpp"
 #include "ptnet/model.hpp"
 
 namespace ptnet {

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/zip_check.hpp"
+#include "model/model_config_internal.hpp"
+#include "model/model_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/zip_check.hpp"
 
 namespace ptnet {
 namespace nn = torch::nn;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "model/model_config_internal.hpp"
 #include "ptnet/error.hpp"
 
 namespace ptnet {

@@ -13,11 +13,11 @@
 #include <set>
 #include <sstream>
 
+#include "core/zip_check.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model.hpp"
 #include "ptnet/strings.hpp"
-#include "ptnet/zip_check.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;

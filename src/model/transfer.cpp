@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "model/model_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "model/loaded_model.hpp"

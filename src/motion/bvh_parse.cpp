@@ -12,6 +12,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/strings.hpp"

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "rig.hpp"

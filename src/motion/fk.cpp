@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 
 namespace ptnet::detail {

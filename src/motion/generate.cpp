@@ -5,6 +5,7 @@
 #include <string>
 
 #include "generate_internal.hpp"
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "markers_internal.hpp"
 #include "ptnet/error.hpp"
 #include "motion_internal.hpp"
 #include "ptnet/markers.hpp"

@@ -29,8 +29,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/anthropometry.hpp"
 #include "markers_internal.hpp"
-#include "ptnet/anthropometry.hpp"
 
 namespace ptnet::detail {
 namespace {

@@ -1,5 +1,6 @@
-// Internal: the landmarks of a marker map and the marker-to-joint steps of
-// motion_from_trc (see ptnet/markers.hpp, docs/markers.md).
+// Internal: the readers' steps on text, the landmarks of a marker map and
+// the marker-to-joint steps of motion_from_trc (see ptnet/markers.hpp,
+// docs/markers.md).
 //
 // Dimension legend: F frames, M markers, L = kLandmarkCount landmarks.
 #pragma once
@@ -7,10 +8,34 @@
 #include <Eigen/Core>
 #include <array>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "ptnet/markers.hpp"
+
+namespace ptnet {
+
+// read_trc on .trc text; errors are one line "walk.trc:7: expected 125 values
+// (Frame#, Time, 41 markers x 3), found 80".
+Trc parse_trc(std::string_view text, const std::string& source);
+// True for a path ending in .trc (any case): load_motion reads it as markers.
+bool is_trc_path(const std::string& path);
+
+// The map file format (docs/markers.md): lines "landmark = name name ...",
+// '#' comments, "map = NAME" optional. Unknown landmarks are errors that
+// list the known ones.
+MarkerMap parse_marker_map(std::string_view text, const std::string& source);
+std::string marker_map_text(const std::string& name);  // a shipped map's file text
+
+// The landmarks a map can name (docs/markers.md): pelvis r_asis, l_asis,
+// r_psis, l_psis, sacrum; per side (r_, l_) knee_lat, knee_med, ankle_lat,
+// ankle_med, heel, mt1, mt5, toe, toe_tip, shoulder, elbow_lat, elbow_med,
+// wrist_lat, wrist_med, head_front, head_back, temple and the tracking sets
+// thigh, shank, foot; trunk c7, t10, clav, sternum, head_top.
+const std::vector<std::string>& landmark_names();
+
+}  // namespace ptnet
 
 namespace ptnet::detail {
 

@@ -9,9 +9,9 @@
 
 #include <Eigen/Geometry>
 
+#include "core/anthropometry.hpp"
 #include "markers_internal.hpp"
 #include "motion_internal.hpp"
-#include "ptnet/anthropometry.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/strings.hpp"
 

@@ -1,6 +1,6 @@
 // Measurements on canonical poses: the lowest sole point and the standing
 // height. Both use the canonical foot and head geometry of the team notes
-// (Drillis-Contini proportions via include/ptnet/anthropometry.hpp):
+// (Drillis-Contini proportions via src/core/anthropometry.hpp):
 //   toe (MTP) = ankle + (0.0790 H, 0, -0.030 H)         (|toe - ankle| = 0.0845 H)
 //   heel back = ankle + (-0.0334 H, 0, -0.039 H)
 //   toe tip   = toe   + (+0.0395 H, 0, -0.009 H)
@@ -13,9 +13,9 @@
 
 #include <Eigen/Geometry>
 
-#include "ptnet/anthropometry.hpp"
-#include "ptnet/error.hpp"
+#include "core/anthropometry.hpp"
 #include "motion_internal.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 
 namespace ptnet {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "rotation.hpp"

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "rotation.hpp"

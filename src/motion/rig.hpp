@@ -17,7 +17,7 @@
 #include <random>
 #include <vector>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "ptnet/motion.hpp"
 
 namespace ptnet::rig {

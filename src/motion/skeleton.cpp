@@ -2,10 +2,11 @@
 //
 // Source: Drillis & Contini (1966) segment fractions of standing height H, as
 // reproduced in Winter, Biomechanics and Motor Control of Human Movement,
-// Fig. 4.1 (include/ptnet/anthropometry.hpp, docs/anthropometry.md).
+// Fig. 4.1 (src/core/anthropometry.hpp, docs/anthropometry.md).
 // The layout is the one the motion, body and sim stages agree on
 // (ptnet-team notes, "The canonical skeleton").
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "rig.hpp"

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "rotation.hpp"

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 

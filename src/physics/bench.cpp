@@ -6,9 +6,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/anthropometry.hpp"
+#include "core/csv.hpp"
 #include "physics_internal.hpp"
-#include "ptnet/anthropometry.hpp"
-#include "ptnet/csv.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/markers.hpp"
 #include "ptnet/strings.hpp"

@@ -1,11 +1,43 @@
-// Internal: the steps of the physics bench (see ptnet/physics.hpp).
+// Internal: the steps of the physics bench (see ptnet/physics.hpp): the
+// force plates' file read, the contacts of a force series, the comparison.
+// Tests include it as "physics/physics_internal.hpp".
 //
 // Dimension legend: T frames of the trial, N plate samples.
 #pragma once
 
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "ptnet/physics.hpp"
+
+namespace ptnet {
+
+// Force plates of an OpenSim storage file (.mot / .sto: a header ending in
+// "endheader", named columns, one row per sample). A plate is every group of
+// columns PREFIX + vx vy vz px py pz whose prefix holds "force"
+// ("ground_force_", "1_ground_force_", "ground_force_r_"); other columns are
+// ignored. Lab axes and units as the file (N, m).
+struct ForcePlates {
+  struct Plate {
+    std::string prefix;
+    std::vector<Eigen::Vector3d> force_n;  // [N]
+    std::vector<Eigen::Vector3d> cop_m;    // [N]
+  };
+  std::vector<double> time_s;  // [N], increasing
+  std::vector<Plate> plates;   // [P]
+  std::string source;
+};
+// From the file's text (`source` names it in errors), or read from `path`.
+ForcePlates parse_grf_mot(std::string_view text, const std::string& source);
+ForcePlates read_grf_mot(const std::string& path);
+
+// The contacts of a force series (time_s and force_n of equal length).
+std::vector<Contact> find_contacts(const std::vector<double>& time_s, const std::vector<double>& force_n,
+                                   double threshold_n, int foot);
+
+}  // namespace ptnet
 
 namespace ptnet::detail {
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "physics/physics_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/physics.hpp"

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "ptnet/error.hpp"
 #include "sim_internal.hpp"
 

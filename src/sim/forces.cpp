@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/sim.hpp"

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ptnet/anthropometry.hpp"
+#include "core/anthropometry.hpp"
 #include "sim_internal.hpp"
 
 namespace ptnet {
@@ -62,9 +62,5 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz)
 }
 
 }  // namespace detail
-
-std::vector<double> vertical_load(const Motion& motion, const Body& body, double com_filter_hz) {
-  return detail::com_track(motion, body, com_filter_hz).load_n;
-}
 
 }  // namespace ptnet

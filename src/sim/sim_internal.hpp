@@ -15,6 +15,19 @@
 #include "ptnet/body.hpp"
 #include "ptnet/sim.hpp"
 
+namespace ptnet {
+
+// simulate() with a given placement, read by the sensor model once per seed
+// of `seeds` (options.seed is not used): result k is, bit for bit,
+// simulate(motion, body, options with seed = seeds[k], placement), for the
+// cost of one simulation plus the sensor model per seed.
+std::vector<PressureSequence> simulate_reads(const Motion& motion, const Body& body, const SimOptions& options,
+                                             const MotionPlacement& placement,
+                                             const std::vector<std::uint64_t>& seeds,
+                                             std::vector<FrameTrace>* trace = nullptr);
+
+}  // namespace ptnet
+
 namespace ptnet::detail {
 
 // Some rigs put the toe joint well above the metatarsal heads, so a flat

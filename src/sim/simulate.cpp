@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/hash.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/hash.hpp"
 #include "sim_internal.hpp"
 
 namespace ptnet {

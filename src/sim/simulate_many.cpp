@@ -7,6 +7,7 @@
 #include "ptnet/error.hpp"
 #include "core/parallel.hpp"
 #include "ptnet/sim.hpp"
+#include "sim/sim_internal.hpp"
 
 namespace ptnet {
 

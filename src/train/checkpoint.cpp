@@ -3,9 +3,9 @@
 
 #include <filesystem>
 
+#include "core/zip_check.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/zip_check.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;

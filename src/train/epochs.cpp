@@ -1,8 +1,10 @@
 // The epochs of train() (run.hpp): each epoch's optimiser steps over its
 // windows (a step per batch, gradients accumulated over micro-batches and,
 // distributed, summed over the ranks), its validation, and what is recorded
-// after it (the best weights, the history, the checkpoint, config.json).
+// after it (the best weights, the history, the checkpoint, config.json);
+// distributed, the BatchNorm statistics the ranks share (SharedBatchNorm).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -34,6 +36,79 @@ std::vector<std::int64_t> epoch_order(const TrainOptions& o, const WindowIndex& 
     }
   }
   return order;
+}
+
+// BatchNorm running statistics of a step whose micro-batches are spread over
+// the ranks. One process updates them micro-batch after micro-batch:
+// r <- (1 - a) r + a x_m, so after M of them r = (1 - a)^M r0 + sum_m
+// (1 - a)^(M-1-m) a x_m. Each rank runs its micro-batches from zeroed
+// buffers (the update is then a x_m), adds them up with that decay, and the
+// sum over the ranks (all-reduced with the gradients) completes the formula.
+// Training arithmetic, not networking: the caller all-reduces sums().
+//
+//   SharedBatchNorm bn(*net);
+//   bn.begin_step();
+//   for m in this rank's micro-batches: bn.before_micro_batch(); forward; bn.after_micro_batch(m, M);
+//   comm.allreduce(gradients + bn.sums()); bn.end_step(M);
+class SharedBatchNorm {
+ public:
+  // The BatchNorm2d layers of `net` that track running statistics.
+  explicit SharedBatchNorm(torch::nn::Module& net);
+  void begin_step();
+  void before_micro_batch();
+  void after_micro_batch(int m, int count);
+  std::vector<torch::Tensor>& sums() { return sums_; }  // all-reduced by the caller
+  void end_step(int count);
+
+ private:
+  struct Layer {
+    torch::Tensor mean, var, batches;  // the layer's running_mean, running_var, num_batches_tracked
+    double momentum = 0.1;
+  };
+  std::vector<Layer> layers_;
+  std::vector<std::array<torch::Tensor, 3>> start_;  // per layer: mean, var, batches at the step's start
+  std::vector<torch::Tensor> sums_;                  // per layer: decayed mean, var sums of this rank
+};
+
+SharedBatchNorm::SharedBatchNorm(torch::nn::Module& net) {
+  for (const auto& m : net.modules(/*include_self=*/false))
+    if (auto* bn = dynamic_cast<torch::nn::BatchNorm2dImpl*>(m.get()); bn && bn->options.track_running_stats())
+      layers_.push_back({bn->running_mean, bn->running_var, bn->num_batches_tracked,
+                         bn->options.momentum().value_or(0.1)});
+}
+
+void SharedBatchNorm::begin_step() {
+  start_.clear();
+  sums_.clear();
+  for (const Layer& l : layers_) {
+    start_.push_back({l.mean.clone(), l.var.clone(), l.batches.clone()});
+    sums_.push_back(torch::zeros_like(l.mean));
+    sums_.push_back(torch::zeros_like(l.var));
+  }
+}
+
+void SharedBatchNorm::before_micro_batch() {
+  torch::NoGradGuard no_grad;
+  for (Layer& l : layers_) l.mean.zero_(), l.var.zero_();
+}
+
+void SharedBatchNorm::after_micro_batch(int m, int count) {
+  torch::NoGradGuard no_grad;
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    const double decay = std::pow(1 - layers_[i].momentum, count - 1 - m);
+    sums_[2 * i].add_(layers_[i].mean, decay);
+    sums_[2 * i + 1].add_(layers_[i].var, decay);
+  }
+}
+
+void SharedBatchNorm::end_step(int count) {
+  torch::NoGradGuard no_grad;
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    const double decay = std::pow(1 - layers_[i].momentum, count);
+    layers_[i].mean.copy_(start_[i][0] * decay + sums_[2 * i]);
+    layers_[i].var.copy_(start_[i][1] * decay + sums_[2 * i + 1]);
+    layers_[i].batches.copy_(start_[i][2] + count);
+  }
 }
 
 // One epoch of optimiser steps (epoch0 0-based); the mean training loss.

@@ -1,7 +1,9 @@
 // Pressure sources, their digest, the training protocol filter.
 
+#include "train/source.hpp"
+
+#include "core/hash.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/hash.hpp"
 #include "ptnet/train.hpp"
 
 namespace ptnet {

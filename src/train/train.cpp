@@ -19,6 +19,7 @@
 #include "model_folder.hpp"
 #include "ptnet/error.hpp"
 #include "run.hpp"
+#include "source.hpp"
 #include "train_options.hpp"
 
 namespace ptnet {

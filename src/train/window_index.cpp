@@ -5,9 +5,10 @@
 #include <random>
 #include <set>
 
+#include "core/hash.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/hash.hpp"
 #include "ptnet/train.hpp"
+#include "source.hpp"
 #include "window_index.hpp"
 
 namespace ptnet {

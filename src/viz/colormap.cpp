@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "ptnet/viz.hpp"
+#include "viz/viz_internal.hpp"
 
 namespace ptnet {
 

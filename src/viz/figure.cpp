@@ -12,6 +12,7 @@
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"
 #include "ptnet/viz.hpp"
+#include "viz/viz_internal.hpp"
 
 namespace ptnet {
 

@@ -2,6 +2,7 @@
 // five column bytes per glyph, bit 0 = top row; g j p q y use bit 7 as a
 // one-row descender (the glyph cell is 6 x 8).
 #include "ptnet/viz.hpp"
+#include "viz/viz_internal.hpp"
 
 namespace ptnet {
 

@@ -13,6 +13,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/viz.hpp"
+#include "viz/viz_internal.hpp"
 
 namespace ptnet {
 namespace {

@@ -1,7 +1,7 @@
-// The ranks of a training run on c10d + Gloo, and the BatchNorm statistics
-// they share (see distributed.hpp). The only translation unit that includes
-// c10d (compiled with USE_C10D_GLOO).
-#include "distributed.hpp"
+// The ranks of a data-parallel run on c10d + Gloo (see communicator.hpp).
+// The only translation unit that includes the process group (compiled with
+// USE_C10D_GLOO).
+#include "communicator.hpp"
 
 #include <torch/csrc/distributed/c10d/PrefixStore.hpp>
 #include <torch/csrc/distributed/c10d/ProcessGroupGloo.hpp>
@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdlib>
 #include <thread>
 
@@ -276,47 +275,6 @@ void Communicator::barrier(const std::string& what) {
     impl_->group->barrier()->wait();
   } catch (const std::exception& e) {
     lost(what, short_detail(e));
-  }
-}
-
-SharedBatchNorm::SharedBatchNorm(torch::nn::Module& net) {
-  for (const auto& m : net.modules(/*include_self=*/false))
-    if (auto* bn = dynamic_cast<torch::nn::BatchNorm2dImpl*>(m.get()); bn && bn->options.track_running_stats())
-      layers_.push_back({bn->running_mean, bn->running_var, bn->num_batches_tracked,
-                         bn->options.momentum().value_or(0.1)});
-}
-
-void SharedBatchNorm::begin_step() {
-  start_.clear();
-  sums_.clear();
-  for (const Layer& l : layers_) {
-    start_.push_back({l.mean.clone(), l.var.clone(), l.batches.clone()});
-    sums_.push_back(torch::zeros_like(l.mean));
-    sums_.push_back(torch::zeros_like(l.var));
-  }
-}
-
-void SharedBatchNorm::before_micro_batch() {
-  torch::NoGradGuard no_grad;
-  for (Layer& l : layers_) l.mean.zero_(), l.var.zero_();
-}
-
-void SharedBatchNorm::after_micro_batch(int m, int count) {
-  torch::NoGradGuard no_grad;
-  for (std::size_t i = 0; i < layers_.size(); ++i) {
-    const double decay = std::pow(1 - layers_[i].momentum, count - 1 - m);
-    sums_[2 * i].add_(layers_[i].mean, decay);
-    sums_[2 * i + 1].add_(layers_[i].var, decay);
-  }
-}
-
-void SharedBatchNorm::end_step(int count) {
-  torch::NoGradGuard no_grad;
-  for (std::size_t i = 0; i < layers_.size(); ++i) {
-    const double decay = std::pow(1 - layers_[i].momentum, count);
-    layers_[i].mean.copy_(start_[i][0] * decay + sums_[2 * i]);
-    layers_[i].var.copy_(start_[i][1] * decay + sums_[2 * i + 1]);
-    layers_[i].batches.copy_(start_[i][2] + count);
   }
 }
 

@@ -1,4 +1,4 @@
-// The rendezvous stores (train/rendezvous_store.hpp): the tcp store serves
+// The rendezvous stores (dist/rendezvous_store.hpp): the tcp store serves
 // the c10d::Store calls the ranks and Gloo make, and holds against
 // connections that are not ranks (oversized announcements, partial
 // messages, silent or unauthenticated connections, a full store); the file store
@@ -21,8 +21,8 @@
 #include "cli_test_util.hpp"
 #include "data_test_util.hpp"
 #include "ptnet/error.hpp"
-#include "train/rendezvous_store.hpp"
-#include "train/store_protocol.hpp"
+#include "dist/rendezvous_store.hpp"
+#include "dist/store_protocol.hpp"
 
 using namespace ptnet;
 using ptnet::testing_cli::slurp;

@@ -1,4 +1,4 @@
-// ptnet/hash.hpp: the one non-cryptographic hash of ptnet, FNV-1a 64, behind
+// core/hash.hpp: the one non-cryptographic hash of ptnet, FNV-1a 64, behind
 // every digest and name-derived seed (the weights digest in config.json, the
 // training source digest, per-sequence sensor seeds, per-motion validation
 // splits). Changing it changes recorded digests and simulated datasets.
@@ -15,6 +15,9 @@
 // per-motion validation split were first written; they keep it, since a
 // new value would make recorded model folders refuse to resume and move
 // windows between training and validation.
+//
+// Private to the library (not installed): the stages include it as
+// "core/hash.hpp".
 #pragma once
 
 #include <cstddef>

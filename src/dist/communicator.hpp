@@ -1,6 +1,8 @@
-// train/distributed.hpp: the ranks of a data-parallel training run, on
-// PyTorch's c10d with the Gloo backend. Private to the train stage: c10d
-// and Gloo are included by distributed.cpp (and the stores by
+// dist/communicator.hpp: the ranks of a data-parallel run, on PyTorch's
+// c10d with the Gloo backend. Private to the dist stage, which the train
+// stage uses (its users see TrainOptions' world_size, rank, rendezvous,
+// dist_timeout_s and dist_token, the fields the messages here name): c10d
+// and Gloo are included by communicator.cpp (and the stores by
 // rendezvous_store.cpp) only.
 //
 //   Communicator comm = Communicator::join({2, rank, "tcp://10.0.0.1:29500", 60, token});
@@ -15,22 +17,14 @@
 // closes its connections, so the survivors fail at their next collective.
 // Every failure is a ptnet::Error of one line; a lost peer is named
 // ("rank 1 was lost during the gradient all-reduce ...").
-//
-// SharedBatchNorm (below): the BatchNorm running statistics of a step whose
-// micro-batches the ranks share, summed with the gradients.
 #pragma once
 
 #include <ATen/core/Tensor.h>
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace torch::nn {
-class Module;
-}
 
 namespace ptnet {
 
@@ -86,37 +80,6 @@ class Communicator {
   int rank_ = 0, size_ = 1;
   std::unique_ptr<Impl> impl_;
   CommStats stats_;
-};
-
-// BatchNorm running statistics of a step whose micro-batches are spread over
-// the ranks. One process updates them micro-batch after micro-batch:
-// r <- (1 - a) r + a x_m, so after M of them r = (1 - a)^M r0 + sum_m
-// (1 - a)^(M-1-m) a x_m. Each rank runs its micro-batches from zeroed
-// buffers (the update is then a x_m), adds them up with that decay, and the
-// sum over the ranks (all-reduced with the gradients) completes the formula.
-//
-//   SharedBatchNorm bn(*net);
-//   bn.begin_step();
-//   for m in this rank's micro-batches: bn.before_micro_batch(); forward; bn.after_micro_batch(m, M);
-//   comm.allreduce(gradients + bn.sums()); bn.end_step(M);
-class SharedBatchNorm {
- public:
-  // The BatchNorm2d layers of `net` that track running statistics.
-  explicit SharedBatchNorm(torch::nn::Module& net);
-  void begin_step();
-  void before_micro_batch();
-  void after_micro_batch(int m, int count);
-  std::vector<at::Tensor>& sums() { return sums_; }  // all-reduced by the caller
-  void end_step(int count);
-
- private:
-  struct Layer {
-    at::Tensor mean, var, batches;  // the layer's running_mean, running_var, num_batches_tracked
-    double momentum = 0.1;
-  };
-  std::vector<Layer> layers_;
-  std::vector<std::array<at::Tensor, 3>> start_;  // per layer: mean, var, batches at the step's start
-  std::vector<at::Tensor> sums_;                  // per layer: decayed mean, var sums of this rank
 };
 
 }  // namespace ptnet

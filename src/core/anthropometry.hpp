@@ -1,4 +1,4 @@
-// ptnet/anthropometry.hpp: published body proportions, in one place.
+// core/anthropometry.hpp: published body proportions, in one place.
 //
 //   const auto& p = ptnet::anthropometry::kDrillisContini;
 //   double thigh_m = p.thigh * height_m;
@@ -12,6 +12,9 @@
 //  - whole-body density ~1050 kg/m^3.
 // The motion stage (retargeting) and the body stage (geometry, masses) both
 // read these tables, so a skeleton and the body built on it always agree.
+//
+// Private to the library (not installed): the stages include it as
+// "core/anthropometry.hpp".
 #pragma once
 
 namespace ptnet::anthropometry {

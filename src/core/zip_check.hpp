@@ -1,4 +1,4 @@
-// ptnet/zip_check.hpp: integrity of the zip archives LibTorch writes
+// core/zip_check.hpp: integrity of the zip archives LibTorch writes
 // (model.pt, checkpoint.pt). LibTorch's own reader skips the CRC-32 checks,
 // so a damaged archive would load; ptnet checks every record first.
 //
@@ -8,6 +8,9 @@
 // directory entry, its local header (same name, inside the file), each
 // record's data (stored, or deflated: inflated in pieces) and its CRC-32
 // against the directory's.
+//
+// Private to the library (not installed): the stages include it as
+// "core/zip_check.hpp".
 #pragma once
 
 #include <cstdint>

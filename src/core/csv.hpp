@@ -1,4 +1,4 @@
-// ptnet/csv.hpp: the one CSV reader (RFC 4180) behind every CSV ptnet reads
+// core/csv.hpp: the one CSV reader (RFC 4180) behind every CSV ptnet reads
 // (bodies, clips, recordings manifests, metrics.csv), and its fields for
 // writing.
 //
@@ -13,6 +13,9 @@
 // matched case-insensitively, so columns may come in any order. Every row
 // must have as many fields as the header. Errors are one line:
 // "bodies.csv:4: expected 4 fields, found 5".
+//
+// Private to the library (not installed): the stages include it as
+// "core/csv.hpp".
 #pragma once
 
 #include <string>
