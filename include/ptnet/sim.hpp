@@ -142,8 +142,8 @@ struct MotionPlacement {
   std::vector<double> floor;             // [T] height of the capture floor under the motion, m (empty: z = 0)
   // Each foot's pitch correction [left, right] (rad, toe down > 0; 0: none),
   // decided on the motion's kFloorReferenceHeightCm copy: an angle, the same
-  // on every copy (detail::foot_pitch_offsets decides per copy otherwise, and
-  // its "planted" speed test passes other frames on a short copy).
+  // on every copy (decided per copy otherwise, the "planted" speed test would
+  // pass other frames on a short copy).
   std::array<double, 2> foot_pitch{0, 0};
   // Each foot's height correction [left, right] (m, lowered > 0): the level
   // its sole stands at, the 20th percentile over the motion of its lowest
