@@ -62,12 +62,12 @@ struct Golden {
 
 // clang-format off
 const std::vector<Golden> kGolden = {
-  {"walk/f150/default", "122771032acc32c2", "0dabc957022a3d5b"},
-  {"walk/f150/follow_ideal_s4", "a2ccee084a14ef3c", "85c68a9b4cd8a204"},
-  {"walk/f150/nobalance_s2", "19a3009c49a553e3", "d8b6cdd1ffb98641"},
-  {"walk/m196/default", "ef3947dc40343a0b", "aa4217dd8c24daee"},
-  {"walk/m196/follow_ideal_s4", "0677340a3803b005", "843d7d6a9fedb061"},
-  {"walk/m196/nobalance_s2", "2d4980d1ddf8e7ae", "b85f5729fbe66263"},
+  {"walk/f150/default", "f79d51509cf38120", "1eac3c475a797bd1"},
+  {"walk/f150/follow_ideal_s4", "14d97adc70b92612", "3251b5aaa7805494"},
+  {"walk/f150/nobalance_s2", "9dc521e0852a1476", "29a931373c3d7b6f"},
+  {"walk/m196/default", "7e555a8d3cdb7963", "9c70a257402a3848"},
+  {"walk/m196/follow_ideal_s4", "25335b62fdbceb01", "9bfca5cf80784088"},
+  {"walk/m196/nobalance_s2", "b356498f11adda55", "e3bf766a746bd4e2"},
   {"rom/f150/default", "68b62f17b65a8b93", "f999486c7de055f7"},
   {"rom/f150/follow_ideal_s4", "31e123316c7babc8", "73906e6b6962f50d"},
   {"rom/f150/nobalance_s2", "c0a7a357888e2cd0", "465dfb69002e29d1"},

@@ -9,7 +9,7 @@
 // loading), stays flat, then rises onto the toe tip before toe-off.
 // Footprints are fixed while on the ground, so stance feet never slide; the
 // pelvis follows a smooth path through the footprints (over the stance foot at
-// mid-stance) at the highest height the legs reach.
+// mid-stance), highest at mid-stance and lowest in double support.
 #include <algorithm>
 #include <cmath>
 
@@ -172,6 +172,27 @@ void plan_steps(WalkPlan& w, rig::Rng& rng, double seconds) {
   }
 }
 
+// How far the pelvis sinks below its mid-stance height at time t, m. It
+// rides the planted legs' arcs (compass gait: a leg of length L whose ankle
+// lies d ahead of or behind the pelvis along the heading holds it
+// L - sqrt(L^2 - d^2) lower; the lowest over the planted feet), flattened by
+// the stance knee and the foot's rockers to kArcShare of that. kArcShare is
+// measured (docs/motion-generate.md): a treadmill walk's pelvis rises and
+// falls 4.1 cm at 0.65 m steps, where the arc of its 0.87 m legs gives 6.4 cm.
+double pelvis_sink(const WalkPlan& w, const rig::Controls& c, double t, double yaw) {
+  constexpr double kArcShare = 0.64;
+  const auto& p = anthropometry::kDrillisContini;
+  const double leg = (p.hip - p.ankle) * w.h;
+  const Vector2d ahead = heading(yaw);
+  double sink = 0;
+  for (int s = 0; s < 2; ++s) {
+    if (w.feet[s].swing_activity(t, 0.05) >= 0.5) continue;
+    const double d = std::min(std::abs(ahead.dot(c.foot[s].ankle.head<2>() - c.pelvis.head<2>())), 0.9 * leg);
+    sink = std::max(sink, leg - std::sqrt(leg * leg - d * d));
+  }
+  return kArcShare * sink;
+}
+
 // The frames: feet on their tracks, pelvis on its path, the upper body from both.
 Clip render(const WalkPlan& w, double seconds, double fps) {
   const Style& st = w.st;
@@ -193,7 +214,8 @@ Clip render(const WalkPlan& w, double seconds, double fps) {
     c.pelvis = {pv.x(), pv.y(), hip_z};
     walking_upper_body(st, h, w.step_len, c, pv.z(), swing, 1.0);
     clip.controls.push_back(c);
-    clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.015) * h);  // stance knee ~15 deg
+    // stance knee ~15 deg at mid-stance, lower between
+    clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.015) * h - pelvis_sink(w, c, t, pv.z()));
   }
   return clip;
 }
