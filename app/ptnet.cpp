@@ -3,7 +3,7 @@
 //
 // Two executables are built from these files (app/CMakeLists.txt):
 //   ptnet        the commands that need no LibTorch (simulate, bodies, info,
-//                render, merge, motions, physics-bench); for any other command line it
+//                render, forces, merge, motions, physics-bench); for any other command line it
 //                runs ptnet-torch with the same arguments (execv).
 //   ptnet-torch  every command, linked with LibTorch: beside ptnet in the
 //                build folder, in libexec/ptnet/ when installed.
@@ -64,6 +64,7 @@ std::string flag_of(const std::string& command, std::string_view field) {
       {"evaluate", "threshold_kpa", "--threshold"},
       {"simulate", "pitch_m", "--pitch"},
       {"render", "sequences", "--sequence"},
+      {"forces", "contact_kpa", "--contact"},
   };
   for (const Renamed& r : kRenamed)
     if (r.field == field && (r.command.empty() || r.command == command)) return std::string(r.flag);

@@ -1,11 +1,13 @@
 // Core's shared helpers that several stages once kept their own copies of:
-// FNV-1a 64 (digests and name-derived seeds) and the binary R^2 from counts.
+// FNV-1a 64 (digests and name-derived seeds), the binary R^2 from counts and
+// a frame's load (force, centre of pressure, contact area).
 // The values are pinned: they decide simulated sensor noise, recorded
 // digests and the validation split, so a change would change outputs.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/hash.hpp"
 #include "ptnet/pressure.hpp"
@@ -52,6 +54,29 @@ TEST(CoreBinaryR2, ConstantOrEmptyTruthIsNeverNan) {
   EXPECT_EQ(binary_r2_from_counts(0, 10, 10), 1.0);
   EXPECT_EQ(binary_r2_from_counts(1, 10, 10), 0.0);
   EXPECT_EQ(binary_r2_from_counts(0, 0, 0), 1.0);
+}
+
+// A frame read as a force plate: the force is pressure x area (kPa x 1000 x
+// pitch^2 per cell), the centre of pressure is the pressure-weighted centre
+// in the mat's frame (x towards row 0, y towards column 0), negative cells
+// carry nothing, and an empty frame has no centre.
+TEST(CoreFrameLoad, ForceCentreAndAreaOfKnownFrames) {
+  const MatSpec mat;  // 80 x 28, 2 cm
+  std::vector<float> f(std::size_t(mat.cells()), 0.0f);
+  const FrameLoad empty = frame_load(f.data(), mat);
+  EXPECT_EQ(empty.force_n, 0.0);
+  EXPECT_TRUE(std::isnan(empty.x_m) && std::isnan(empty.y_m));
+  // 100 kPa on cell (0, 0), the far left corner; 300 kPa on cell (79, 27).
+  f[0] = 100.0f;
+  f[std::size_t(79 * 28 + 27)] = 300.0f;
+  f[5] = -50.0f;  // below zero: no load
+  const FrameLoad l = frame_load(f.data(), mat);
+  EXPECT_NEAR(l.force_n, 400 * 1000 * 0.02 * 0.02, 1e-9);  // 160 N
+  // Cell centres at x = 0.8 - 0.01 = 0.79 and -0.79, y = 0.28 - 0.01 = 0.27 and -0.27.
+  EXPECT_NEAR(l.x_m, (100 * 0.79 + 300 * -0.79) / 400, 1e-12);
+  EXPECT_NEAR(l.y_m, (100 * 0.27 + 300 * -0.27) / 400, 1e-12);
+  EXPECT_NEAR(l.contact_m2, 2 * 0.0004, 1e-15);
+  EXPECT_NEAR(frame_load(f.data(), mat, 150).contact_m2, 0.0004, 1e-15);  // only the 300 kPa cell
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // The gait-lab commands end to end: `ptnet simulate --forces` writes each
-// sequence's ground reaction and refuses to overwrite it; `ptnet
+// sequence's ground reaction and refuses to overwrite it; `ptnet forces`
+// reads the same reaction off an ideal mat; `ptnet
 // physics-bench` on the real trials (skipped without ../shared/real-gait)
 // writes its page, table and force files, refuses to overwrite them, and a
 // bad trials CSV is one line; `ptnet info`, `ptnet simulate` and `ptnet
@@ -9,8 +10,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli_test_util.hpp"
 
@@ -52,6 +55,57 @@ TEST(CliForces, SimulateWritesEachSequencesGroundReaction) {
   EXPECT_NE(again.err.find("exists; pass --force to overwrite"), std::string::npos) << again.err;
   EXPECT_EQ(d.run(args + " --force --forces-format csv").status, 0);
   EXPECT_TRUE(fs::exists(d.path / "f" / "p1_walking_t1__b1.csv"));
+}
+
+// `ptnet forces` reads a dataset's mat as a force plate: on the procedural
+// motions (always on the mat) with an ideal sensor it finds the simulator's
+// own ground reaction in every frame (Newton: the mat carries the body), and
+// it refuses to overwrite its files or to read a sequence that is not there.
+TEST(CliForces, TheMatReadsTheSimulatorsGroundReaction) {
+  Dir d;
+  std::ofstream(d.path / "b.csv") << "id,sex,height_cm,weight_kg\nb1,male,185,90\n";
+  ASSERT_EQ(d.run("simulate --embedded --performers 1 --takes 1 --seconds 3 --bodies b.csv --out e.h5 --ideal-sensor "
+                  "--forces sim --forces-format csv --quiet")
+                .status,
+            0);
+  const RunResult r = d.run("forces e.h5 --out mat --format csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("forces: wrote 4 files to mat"), std::string::npos) << r.err;
+  const auto column = [](const fs::path& csv, const std::string& name) {
+    std::ifstream in(csv);
+    std::string line, cell;
+    std::getline(in, line);
+    int index = 0, at = -1;
+    for (std::stringstream header(line); std::getline(header, cell, ','); ++index)
+      if (cell == name) at = index;
+    std::vector<double> out;
+    while (std::getline(in, line)) {
+      std::stringstream row(line);
+      for (int i = 0; i <= at && std::getline(row, cell, ','); ++i)
+        if (i == at) out.push_back(std::stod(cell));
+    }
+    return out;
+  };
+  for (const char* motion : {"p1_walking_t1__b1", "p1_freestyle_t1__b1"}) {
+    SCOPED_TRACE(motion);
+    const auto mat = column(d.path / "mat" / (std::string(motion) + ".csv"), "ground_force_vy");
+    const auto sim = column(d.path / "sim" / (std::string(motion) + ".csv"), "total_force_vy");
+    ASSERT_EQ(mat.size(), sim.size());
+    ASSERT_EQ(mat.size(), 90u);
+    double mean_bw = 0;
+    for (std::size_t t = 0; t < mat.size(); ++t) {
+      EXPECT_NEAR(mat[t], sim[t], 1e-5 * 90 * 9.81) << t;
+      mean_bw += mat[t] / (90 * 9.81) / double(mat.size());
+    }
+    EXPECT_NEAR(mean_bw, 1.0, 0.05);  // over 3 s the body neither rises nor falls much
+  }
+  const RunResult again = d.run("forces e.h5 --out mat --format csv -s p1_rom_t1__b1");
+  EXPECT_EQ(again.status, 1);
+  EXPECT_NE(again.err.find("exists; pass --force to overwrite"), std::string::npos) << again.err;
+  const RunResult absent = d.run("forces e.h5 --out m2 -s nope");
+  EXPECT_EQ(absent.status, 1);
+  EXPECT_NE(absent.err.find("e.h5: no sequence 'nope'"), std::string::npos) << absent.err;
+  EXPECT_FALSE(fs::exists(d.path / "m2"));
 }
 
 TEST(CliPhysicsBench, RealTrialsGiveThePageAndRefuseToOverwrite) {

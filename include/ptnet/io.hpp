@@ -144,6 +144,16 @@ class CommitGroup {
 // Writes `text` to `path` atomically (see AtomicFile).
 void write_text_file(const std::string& path, const std::string& text, bool force);
 
+// A numeric table, by the extension of `path`: an OpenSim storage file
+// (.mot or .sto: the file's stem, version=1, nRows, nColumns, inDegrees=no,
+// `note` as one header line when not empty, endheader, then tab-separated
+// rows) or CSV (.csv, the note left out); 9 significant digits, NaN as
+// "nan". Written atomically; refuses to overwrite unless `force`; Error
+// "PATH: expected a .mot, .sto or .csv file name" for another extension.
+// rows: [N][columns.size()].
+void write_table_file(const std::string& path, const std::vector<std::string>& columns,
+                      const std::vector<std::vector<double>>& rows, const std::string& note, bool force);
+
 // The most threads any option may ask for: 4 x the hardware threads (at
 // least 4). More only adds scheduling overhead and memory.
 int max_threads();

@@ -11,6 +11,7 @@
 // W = cols p). See docs/formats.md.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -52,6 +53,18 @@ inline void zero_below(PressureSequence& s, double kpa) {
   for (float& v : s.kpa)
     if (v < kpa) v = 0.0f;
 }
+
+// What one frame reads, as a force plate under the mat would: the vertical
+// force (kPa x cell area, summed; negative cells count as 0), where it acts
+// (its centre of pressure in the mat's frame above: origin at the mat's
+// centre, x towards row 0, y towards column 0, m; NaN when the frame reads
+// nothing) and the contact area (cells above `contact_kpa`, m^2).
+struct FrameLoad {
+  double force_n = 0;
+  double x_m = NAN, y_m = NAN;
+  double contact_m2 = 0;
+};
+FrameLoad frame_load(const float* frame, const MatSpec& mat, double contact_kpa = 0.5);
 
 // Binary R^2 from counts over n cells (the one formula behind eval's
 // binary_r2 and training's validation): with both maps binarised, SS_res =

@@ -1,5 +1,5 @@
-// Checks shared by every reader of pressure frames, binary R^2 from counts
-// (ptnet/pressure.hpp).
+// Checks shared by every reader of pressure frames, a frame's load and
+// binary R^2 from counts (ptnet/pressure.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +9,25 @@
 #include "ptnet/pressure.hpp"
 
 namespace ptnet {
+
+FrameLoad frame_load(const float* frame, const MatSpec& mat, double contact_kpa) {
+  double sum = 0, sr = 0, sc = 0;
+  int contact = 0;
+  for (int r = 0; r < mat.rows; ++r)
+    for (int c = 0; c < mat.cols; ++c) {
+      const double v = std::max(0.0f, frame[r * mat.cols + c]);
+      sum += v, sr += v * (r + 0.5), sc += v * (c + 0.5);
+      contact += v > contact_kpa;
+    }
+  FrameLoad f;
+  f.force_n = sum * 1000.0 * mat.cell_area_m2();
+  f.contact_m2 = contact * mat.cell_area_m2();
+  if (sum > 0) {  // cell centre (r + 0.5, c + 0.5) lies at x = L/2 - (r + 0.5) p, y = W/2 - (c + 0.5) p
+    f.x_m = (mat.rows / 2.0 - sr / sum) * mat.pitch_m;
+    f.y_m = (mat.cols / 2.0 - sc / sum) * mat.pitch_m;
+  }
+  return f;
+}
 
 double binary_r2_from_counts(double mismatches, double ones, double n) {
   if (n <= 0) return 1;

@@ -65,26 +65,6 @@ double contact_iou(const float* predicted, const float* truth, std::size_t n,
   return either == 0 ? 1.0 : double(both) / double(either);
 }
 
-namespace {
-// Centre of pressure of one frame in cell units; false if it carries no load.
-bool centre_of_pressure(const float* frame, const MatSpec& mat, double& row, double& col,
-                        double& total) {
-  total = 0;
-  double r = 0, c = 0;
-  for (int i = 0; i < mat.rows; ++i)
-    for (int j = 0; j < mat.cols; ++j) {
-      const double p = std::max(0.0f, frame[i * mat.cols + j]);
-      total += p;
-      r += p * i;
-      c += p * j;
-    }
-  if (total <= 0) return false;
-  row = r / total;
-  col = c / total;
-  return true;
-}
-}  // namespace
-
 SequenceMetrics compare(const PressureSequence& predicted, const PressureSequence& truth,
                         const MetricOptions& options) {
   for (const PressureSequence* s : {&predicted, &truth})
@@ -104,19 +84,17 @@ SequenceMetrics compare(const PressureSequence& predicted, const PressureSequenc
   m.binary_r2 = binary_r2(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
   m.contact_iou = contact_iou(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
 
-  double force_p = 0, force_t = 0, cop_sum_cells = 0;
+  double force_p = 0, force_t = 0, cop_sum_m = 0;
   for (int t = 0; t < truth.frames(); ++t) {
-    double rp, cp, fp, rt, ct, ft;
-    const bool has_p = centre_of_pressure(predicted.frame(t), truth.mat, rp, cp, fp);
-    const bool has_t = centre_of_pressure(truth.frame(t), truth.mat, rt, ct, ft);
-    force_p += fp;
-    force_t += ft;
-    if (has_p && has_t) {
-      cop_sum_cells += std::hypot(rp - rt, cp - ct);
+    const FrameLoad p = frame_load(predicted.frame(t), truth.mat), q = frame_load(truth.frame(t), truth.mat);
+    force_p += p.force_n;
+    force_t += q.force_n;
+    if (p.force_n > 0 && q.force_n > 0) {
+      cop_sum_m += std::hypot(p.x_m - q.x_m, p.y_m - q.y_m);
       ++m.cop_frames;
     }
   }
-  m.cop_error_cm = m.cop_frames ? cop_sum_cells / m.cop_frames * truth.mat.pitch_m * 100.0 : 0.0;
+  m.cop_error_cm = m.cop_frames ? cop_sum_m / m.cop_frames * 100.0 : 0.0;
   if (force_t > 0)
     m.force_error_pct = std::abs(force_p - force_t) / force_t * 100.0;
   else

@@ -177,14 +177,8 @@ double figure_vmax(const std::vector<FigurePanel>& panels, const FigureOptions& 
 std::vector<std::pair<double, double>> centre_of_pressure(const PressureSequence& seq) {
   std::vector<std::pair<double, double>> out(seq.frames());
   for (int t = 0; t < seq.frames(); ++t) {
-    double sum = 0, sr = 0, sc = 0;
-    for (int r = 0; r < seq.mat.rows; ++r)
-      for (int c = 0; c < seq.mat.cols; ++c) {
-        const double v = std::max(0.0f, seq.at(t, r, c));
-        sum += v, sr += v * (r + 0.5), sc += v * (c + 0.5);
-      }
-    out[t] = sum > 0 ? std::pair<double, double>{sr / sum, sc / sum}
-                     : std::pair<double, double>{NAN, NAN};
+    const FrameLoad f = frame_load(seq.frame(t), seq.mat);  // NaN when unloaded
+    out[t] = {seq.mat.rows / 2.0 - f.x_m / seq.mat.pitch_m, seq.mat.cols / 2.0 - f.y_m / seq.mat.pitch_m};
   }
   return out;
 }
