@@ -40,20 +40,17 @@ Units units_of(const Bvh& bvh, Units asked, UpAxis up) {
   return Units::automatic;
 }
 
-// What the motion lacks to carry its own dynamics (check_dynamics), and the
-// warning simulate prints for it.
+// What the motion lacks to carry its own dynamics (check_dynamics with the
+// default simulation options), and the warnings for it (simulate checks
+// with its run's options: placement and compliance can change the figures).
 void add_dynamics(nlohmann::ordered_json& j, const Motion& motion) {
   const MotionDynamics d = check_dynamics(motion, SimOptions{});
   j["dynamics"] = {{"frozen_pelvis", d.frozen_pelvis}, {"unsupported", d.unsupported},
-                   {"warning", dynamics_warning(std::filesystem::path(j["file"].get<std::string>()).stem().string(), d)}};
+                   {"warnings", dynamics_warnings(motion.name, d)}};
 }
 
 void print_warnings(std::ostringstream& s, const nlohmann::ordered_json& j) {
-  const std::string w = j["dynamics"]["warning"].get<std::string>();
-  for (std::size_t a = 0, b; a < w.size(); a = b + 1) {
-    b = w.find('\n', a);
-    s << "  warning           " << w.substr(a, b - a) << "\n";
-  }
+  for (const auto& w : j["dynamics"]["warnings"]) s << "  warning           " << w.get<std::string>() << "\n";
 }
 
 nlohmann::ordered_json describe_bvh(const InfoCli& o) {

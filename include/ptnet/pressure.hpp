@@ -27,6 +27,10 @@ struct MatSpec {
   double pitch_m = kMatPitchM;  // cell size (m)
   int cells() const { return rows * cols; }
   double cell_area_m2() const { return pitch_m * pitch_m; }
+  // The centre of cell row r along the mat (x) and of column c across it
+  // (y), m, in the mat's frame above.
+  double cell_x(int r) const { return rows * pitch_m / 2 - (r + 0.5) * pitch_m; }
+  double cell_y(int c) const { return cols * pitch_m / 2 - (c + 0.5) * pitch_m; }
   bool operator==(const MatSpec& o) const {
     return rows == o.rows && cols == o.cols && pitch_m == o.pitch_m;
   }

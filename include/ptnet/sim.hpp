@@ -147,10 +147,11 @@ struct MotionPlacement {
   std::array<double, 2> foot_pitch{0, 0};
   // Each foot's height correction [left, right] (m, lowered > 0): the level
   // its sole stands at, the 20th percentile over the motion of its lowest
-  // surface point above the floor, when within 3 cm of it (a capture or
-  // retargeting error: a foot floating above, or sunk into, the floor it
-  // stands on, as marker-derived joint centres leave it); 0 beyond (a foot
-  // held up). Found on the same reference copy as the pitch, scaled to each copy.
+  // surface point above the floor, when 5 mm to 3 cm above it (a capture or
+  // retargeting error: a foot floating above the floor it stands on, as
+  // marker-derived joint centres leave it); 0 otherwise (a foot held up, or
+  // one at or below the floor, which already presses into the foundation).
+  // Found on the same reference copy as the pitch, scaled to each copy.
   std::array<double, 2> foot_lift{0, 0};
   // The placement of a copy whose horizontal root path is this motion's
   // scaled by `ratio` about `anchor` (a retargeted copy: ratio =
@@ -158,7 +159,7 @@ struct MotionPlacement {
   MotionPlacement scaled(double ratio) const;
 };
 
-// What a motion lacks to carry its own dynamics (docs/simulate.md, "Motions
+// What a motion lacks to carry its own dynamics (docs/physics.md, "Motions
 // that cannot carry their dynamics").
 struct MotionDynamics {
   // Frames in stretches of at least 0.5 s whose pelvis height is fixed (to
@@ -175,10 +176,11 @@ struct MotionDynamics {
   double unsupported = 0;
 };
 // The check, on the motion's copy at kFloorReferenceHeightCm as placed by
-// place_motion(motion, options).
-MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options);
-// "002_03: ..." one line per finding, or "" when the motion carries its dynamics.
-std::string dynamics_warning(const std::string& name, const MotionDynamics& dynamics);
+// `placed` (place_motion(motion, options); nullptr: placed here).
+MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options,
+                              const MotionPlacement* placed = nullptr);
+// "002_03: ..." one line per finding (none when the motion carries its dynamics).
+std::vector<std::string> dynamics_warnings(const std::string& name, const MotionDynamics& dynamics);
 
 // The placement of `motion` for options.placement (fixed: the pelvis path's
 // bounding box centred; follow: its Gaussian-smoothed path, sigma

@@ -11,21 +11,18 @@
 namespace ptnet {
 
 FrameLoad frame_load(const float* frame, const MatSpec& mat, double contact_kpa) {
-  double sum = 0, sr = 0, sc = 0;
+  double sum = 0, sx = 0, sy = 0;
   int contact = 0;
   for (int r = 0; r < mat.rows; ++r)
     for (int c = 0; c < mat.cols; ++c) {
       const double v = std::max(0.0f, frame[r * mat.cols + c]);
-      sum += v, sr += v * (r + 0.5), sc += v * (c + 0.5);
+      sum += v, sx += v * mat.cell_x(r), sy += v * mat.cell_y(c);
       contact += v > contact_kpa;
     }
   FrameLoad f;
   f.force_n = sum * 1000.0 * mat.cell_area_m2();
   f.contact_m2 = contact * mat.cell_area_m2();
-  if (sum > 0) {  // cell centre (r + 0.5, c + 0.5) lies at x = L/2 - (r + 0.5) p, y = W/2 - (c + 0.5) p
-    f.x_m = (mat.rows / 2.0 - sr / sum) * mat.pitch_m;
-    f.y_m = (mat.cols / 2.0 - sc / sum) * mat.pitch_m;
-  }
+  if (sum > 0) f.x_m = sx / sum, f.y_m = sy / sum;
   return f;
 }
 
@@ -64,14 +61,13 @@ void check_finite(const float* kpa, std::size_t n, int cells, const std::string&
 
 void check_pressure(const float* kpa, std::size_t n, int cells, const std::string& file, const std::string& what,
                     std::size_t first_frame) {
-  check_finite(kpa, n, cells, file, what, first_frame);
   const float lo = float(kPressureRangeKpa.lo), hi = float(kPressureRangeKpa.hi);
-  float least = 0, most = 0;  // a vectorised scan first: the offender is looked for only when there is one
-  for (std::size_t i = 0; i < n; ++i) {
-    least = std::min(least, kpa[i]);
-    most = std::max(most, kpa[i]);
-  }
-  if (least >= lo && most <= hi) return;
+  // One vectorised pass: NaN fails both comparisons, infinities the range;
+  // the offender is looked for only when there is one.
+  unsigned bad = 0;
+  for (std::size_t i = 0; i < n; ++i) bad |= unsigned(!(kpa[i] >= lo)) | unsigned(!(kpa[i] <= hi));
+  if (!bad) return;
+  check_finite(kpa, n, cells, file, what, first_frame);
   const std::size_t i = std::size_t(std::find_if(kpa, kpa + n, [&](float v) { return v < lo || v > hi; }) - kpa);
   throw Error::in(file, (what.empty() ? std::string() : what + ": ") + number_text(kpa[i]) + " kPa in frame " +
                             std::to_string(first_frame + i / std::size_t(cells > 0 ? cells : 1)) + ", outside " +

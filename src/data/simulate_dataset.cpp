@@ -107,7 +107,7 @@ void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptio
   places.assign(clips.size(), MotionPlacement{});
   std::mutex progress_mutex;
   int loaded = 0;
-  std::vector<std::string> warnings(clips.size());
+  std::vector<std::vector<std::string>> warnings(clips.size());
   parallel_for(nc, threads, [&](int i) {
     const ClipSource& clip = clips[std::size_t(i)];
     motions[std::size_t(i)] = load_clip(clip, options.fps);
@@ -116,19 +116,18 @@ void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptio
                       "plays at " + precise_text(motions[std::size_t(i)].fps) + " fps, not at the dataset's " +
                           precise_text(options.fps));
     places[std::size_t(i)] = place_motion(motions[std::size_t(i)], options.sim);
-    warnings[std::size_t(i)] =
-        dynamics_warning(clips[std::size_t(i)].meta.motion_id, check_dynamics(motions[std::size_t(i)], options.sim));
+    warnings[std::size_t(i)] = dynamics_warnings(
+        clips[std::size_t(i)].meta.motion_id,
+        check_dynamics(motions[std::size_t(i)], options.sim, &places[std::size_t(i)]));
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       options.progress(progress_count("load", ++loaded, nc, "clips"));
     }
   });
   // In clip order, whatever the threads did first.
-  for (const std::string& w : warnings)
-    for (std::size_t a = 0, b; a < w.size(); a = b + 1) {
-      b = w.find('\n', a);
-      if (options.progress) options.progress(progress_line("simulate", "warning: " + w.substr(a, b - a)));
-    }
+  for (const auto& lines : warnings)
+    for (const std::string& w : lines)
+      if (options.progress) options.progress(progress_line("simulate", "warning: " + w));
 }
 
 // Sizes before allocating: sequence count, then the memory of the metadata

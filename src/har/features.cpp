@@ -66,10 +66,6 @@ struct FrameSeries {
   double force_mean = 0;
 };
 
-// Cell centre along (x) and across (y) the mat (m).
-double cell_x(const MatSpec& mat, int r) { return mat.rows * mat.pitch_m / 2 - (r + 0.5) * mat.pitch_m; }
-double cell_y(const MatSpec& mat, int c) { return mat.cols * mat.pitch_m / 2 - (c + 0.5) * mat.pitch_m; }
-
 FrameSeries frame_series(const float* window, int frames, const MatSpec& mat) {
   const int rows = mat.rows, cols = mat.cols, cells = mat.cells();
   const double to_newton = 1000.0 * mat.cell_area_m2();  // kPa on one cell -> N
@@ -82,11 +78,11 @@ FrameSeries frame_series(const float* window, int frames, const MatSpec& mat) {
     double sum = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sr = 0, sc = 0, pk = 0;
     int contact = 0;
     for (int r = 0; r < rows; ++r) {
-      const double x = cell_x(mat, r);
+      const double x = mat.cell_x(r);
       for (int c = 0; c < cols; ++c) {
         const double v = std::max(0.0f, f[r * cols + c]);
         if (v <= 0) continue;
-        const double y = cell_y(mat, c);
+        const double y = mat.cell_y(c);
         sum += v;
         sx += v * x;
         sy += v * y;
@@ -196,7 +192,7 @@ void add_spread_features(const FrameSeries& s, const MatSpec& mat, std::vector<d
     for (int c = 0; c < mat.cols; ++c) {
       const double v = s.mean_map[r * mat.cols + c];
       if (v <= 0) continue;
-      const double x = cell_x(mat, r), y = cell_y(mat, c);
+      const double x = mat.cell_x(r), y = mat.cell_y(c);
       sum += v;
       sx += v * x;
       sy += v * y;

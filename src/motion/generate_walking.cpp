@@ -172,21 +172,24 @@ void plan_steps(WalkPlan& w, rig::Rng& rng, double seconds) {
   }
 }
 
-// How far the pelvis sinks below its mid-stance height at time t, m. It
+// How far the pelvis sinks below its mid-stance height, m, given each
+// foot's swing activity (FootTrack::swing_activity, 1 while swinging). It
 // rides the planted legs' arcs (compass gait: a leg of length L whose ankle
 // lies d ahead of or behind the pelvis along the heading holds it
 // L - sqrt(L^2 - d^2) lower; the lowest over the planted feet), flattened by
 // the stance knee and the foot's rockers to kArcShare of that. kArcShare is
 // measured (docs/motion-generate.md): a treadmill walk's pelvis rises and
 // falls 4.1 cm at 0.65 m steps, where the arc of its 0.87 m legs gives 6.4 cm.
-double pelvis_sink(const WalkPlan& w, const rig::Controls& c, double t, double yaw) {
+// (rig::settle_pelvis_heights still caps the result at the height the real
+// legs reach, rig::max_pelvis_z: this is the target below that limit.)
+double pelvis_sink(const WalkPlan& w, const rig::Controls& c, const double swing[2], double yaw) {
   constexpr double kArcShare = 0.64;
   const auto& p = anthropometry::kDrillisContini;
   const double leg = (p.hip - p.ankle) * w.h;
   const Vector2d ahead = heading(yaw);
   double sink = 0;
   for (int s = 0; s < 2; ++s) {
-    if (w.feet[s].swing_activity(t, 0.05) >= 0.5) continue;
+    if (swing[s] >= 0.5) continue;  // a swinging foot holds nothing up
     const double d = std::min(std::abs(ahead.dot(c.foot[s].ankle.head<2>() - c.pelvis.head<2>())), 0.9 * leg);
     sink = std::max(sink, leg - std::sqrt(leg * leg - d * d));
   }
@@ -215,7 +218,7 @@ Clip render(const WalkPlan& w, double seconds, double fps) {
     walking_upper_body(st, h, w.step_len, c, pv.z(), swing, 1.0);
     clip.controls.push_back(c);
     // stance knee ~15 deg at mid-stance, lower between
-    clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.015) * h - pelvis_sink(w, c, t, pv.z()));
+    clip.nominal_z.push_back(hip_z - (st.knee_soft + 0.015) * h - pelvis_sink(w, c, swing, pv.z()));
   }
   return clip;
 }

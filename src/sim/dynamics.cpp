@@ -14,23 +14,21 @@ constexpr double kMaxFlightS = 0.6;  // s: a longer time off the floor is not a 
 constexpr double kTooShortS = 0.15;  // s: a shorter one is not told from a flight
 }  // namespace
 
-MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options) {
+MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options, const MotionPlacement* placed) {
   MotionDynamics d;
   const int T = motion.size();
   if (T == 0) throw Error("check_dynamics: motion '" + motion.name + "' has no frames");
   d.frozen_pelvis = detail::frozen_pelvis_fraction(motion);
-  const MotionPlacement place = place_copy(motion, kFloorReferenceHeightCm, options);
+  const double ratio = retarget_scale(motion, kFloorReferenceHeightCm);
+  const MotionPlacement place = (placed ? *placed : place_motion(motion, options)).scaled(ratio);
   const Motion copy = detail::pitch_corrected(retarget(motion, kFloorReferenceHeightCm), place.foot_pitch);
   const Body& body = detail::reference_body();
   std::vector<bool> on_floor(static_cast<std::size_t>(T), false);
   for (int t = 0; t < T; ++t) {
     Pose p = copy.frames[std::size_t(t)];
-    for (int s = 0; s < 2; ++s)
-      for (int j : {s ? kRightAnkle : kLeftAnkle, s ? kRightToe : kLeftToe}) p[j].z() -= place.foot_lift[std::size_t(s)];
+    detail::lift_feet(p, place.foot_lift);
     const PosedBody pb = pose_body(body, p);
-    double lowest = 1e300;
-    for (const auto* foot : {&pb.left_foot, &pb.right_foot})
-      for (const SolePatch& patch : *foot) lowest = std::min(lowest, detail::patch_lowest_z(body.sole(), patch));
+    double lowest = std::min(detail::foot_lowest_z(body.sole(), pb.left_foot), detail::foot_lowest_z(body.sole(), pb.right_foot));
     for (int s = 0; s < kSegmentCount; ++s) {
       const SegmentShape& seg = body.segments()[std::size_t(s)];
       if (seg.touches_ground) lowest = std::min({lowest, pb.a[s].z() - seg.radius_a_m, pb.b[s].z() - seg.radius_b_m});
@@ -67,16 +65,16 @@ MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options) {
   return d;
 }
 
-std::string dynamics_warning(const std::string& name, const MotionDynamics& d) {
-  std::string out;
+std::vector<std::string> dynamics_warnings(const std::string& name, const MotionDynamics& d) {
+  std::vector<std::string> out;
   const auto percent = [](double f) { return std::to_string(int(std::lround(100 * f))) + " %"; };
   if (d.frozen_pelvis > 0)
-    out += name + ": the pelvis height is fixed while the feet step in " + percent(d.frozen_pelvis) +
-           " of frames: its load cannot bounce or fall to zero in flight (it stays near body weight)\n";
+    out.push_back(name + ": the pelvis height is fixed while the feet step in " + percent(d.frozen_pelvis) +
+                  " of frames: its load cannot bounce or fall to zero in flight (it stays near body weight)");
   if (d.unsupported >= 0.05)
-    out += name + ": " + percent(d.unsupported) +
-           " of frames have no body surface on the floor while the body is carried: it stands on something "
-           "that is not the floor, and those frames read no load\n";
+    out.push_back(name + ": " + percent(d.unsupported) +
+                  " of frames have no body surface on the floor while the body is carried: it stands on "
+                  "something that is not the floor, and those frames read no load");
   return out;
 }
 

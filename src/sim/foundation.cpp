@@ -2,7 +2,7 @@
 // sunk into the mat until the body carries its load, in five steps, each a
 // function below: the sink level, the penetration per cell, the tilt
 // towards the zero-moment point, the scaling to the load, and who carries
-// what (the trace). The model: ptnet/sim.hpp, step 4; the steps:
+// what (the trace). The model: ptnet/sim.hpp, step 5; the steps:
 // sim_internal.hpp.
 //
 // The heights are binned for the sink level four samples at a time

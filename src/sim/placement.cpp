@@ -1,7 +1,9 @@
 // Placement of a motion on the mat: centred, walking direction along the
 // long axis (row 0 = the far end the body walks towards), the body's left
 // towards col 0; decided once per source motion and scaled to its copies.
-// Also the floor under a motion and the foot-pitch correction.
+// Also what a placement corrects: the floor under a motion, the feet's
+// pitch and their height (foot lifts), and the surfaces' lowest points
+// those and the dynamics check measure; and the frozen-pelvis check.
 #include <algorithm>
 #include <cmath>
 
@@ -139,6 +141,16 @@ double patch_lowest_z(const SoleSurface& sole, const SolePatch& p) {
   return lowest;
 }
 
+double foot_lowest_z(const SoleSurface& sole, const std::array<SolePatch, 2>& foot) {
+  return std::min(patch_lowest_z(sole, foot[0]), patch_lowest_z(sole, foot[1]));
+}
+
+void lift_feet(Pose& pose, const std::array<double, 2>& lift) {
+  for (int s = 0; s < 2; ++s)
+    if (lift[std::size_t(s)] != 0)
+      for (int j : {s ? kRightAnkle : kLeftAnkle, s ? kRightToe : kLeftToe}) pose[j].z() -= lift[std::size_t(s)];
+}
+
 std::array<double, 2> foot_lifts(const Motion& motion, const Body& body, const std::vector<double>& floor) {
   constexpr double kMaxLift = 0.03;  // m: a larger offset is a foot held up (or on a step), not a capture error
   constexpr double kMinLift = 0.005;  // m
@@ -149,10 +161,7 @@ std::array<double, 2> foot_lifts(const Motion& motion, const Body& body, const s
   for (int t = 0; t < T; ++t) {
     const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
     const double f = floor.empty() ? 0.0 : floor[std::size_t(t)];
-    for (int s = 0; s < 2; ++s) {
-      const auto& patches = s ? pb.right_foot : pb.left_foot;
-      z[std::size_t(s)].push_back(std::min(patch_lowest_z(body.sole(), patches[0]), patch_lowest_z(body.sole(), patches[1])) - f);
-    }
+    for (int s = 0; s < 2; ++s) z[std::size_t(s)].push_back(foot_lowest_z(body.sole(), s ? pb.right_foot : pb.left_foot) - f);
   }
   std::array<double, 2> lift{0, 0};
   for (int s = 0; s < 2; ++s) {
@@ -286,14 +295,14 @@ void place_feet_and_floor(const Motion& motion, const SimOptions& options, Motio
   const Motion reference = retarget(motion, kFloorReferenceHeightCm);
   const double ratio = retarget_scale(motion, kFloorReferenceHeightCm);
   out.foot_pitch = detail::foot_pitch_offsets(reference);
+  const Motion corrected = detail::pitch_corrected(reference, out.foot_pitch);
   std::vector<double> floor;  // the reference copy's
   if (options.floor_window_s > 0) {
-    floor = detail::floor_track(detail::pitch_corrected(reference, out.foot_pitch), detail::reference_body(),
-                                options.floor_window_s, 0.25);
+    floor = detail::floor_track(corrected, detail::reference_body(), options.floor_window_s, 0.25);
     out.floor = floor;
     for (double& z : out.floor) z /= ratio;
   }
-  out.foot_lift = detail::foot_lifts(detail::pitch_corrected(reference, out.foot_pitch), detail::reference_body(), floor);
+  out.foot_lift = detail::foot_lifts(corrected, detail::reference_body(), floor);
   for (double& z : out.foot_lift) z /= ratio;
 }
 

@@ -47,8 +47,12 @@ const Body& reference_body();
 // MotionDynamics::frozen_pelvis of a motion.
 double frozen_pelvis_fraction(const Motion& motion);
 
-// The lowest point (z, m) of a posed sole patch's surface.
+// The lowest point (z, m) of a posed sole patch's surface, and of a posed
+// foot's (the lower of its two patches).
 double patch_lowest_z(const SoleSurface& sole, const SolePatch& patch);
+double foot_lowest_z(const SoleSurface& sole, const std::array<SolePatch, 2>& foot);
+// Lowers each foot's ankle and toe joints by MotionPlacement::foot_lift [left, right] (m).
+void lift_feet(Pose& pose, const std::array<double, 2>& lift);
 // MotionPlacement::foot_lift of a motion (pitch corrected) on `body` over
 // its floor ([T], or empty: z = 0).
 std::array<double, 2> foot_lifts(const Motion& motion, const Body& body, const std::vector<double>& floor);
@@ -91,8 +95,8 @@ struct SampleGrid {
   int rows, cols;            // R S, C S
   double sample_x(int i) const { return half_l - (i + 0.5) * ds; }
   double sample_y(int j) const { return half_w - (j + 0.5) * ds; }
-  double cell_x(int r) const { return half_l - (r + 0.5) * mat.pitch_m; }
-  double cell_y(int c) const { return half_w - (c + 0.5) * mat.pitch_m; }
+  double cell_x(int r) const { return mat.cell_x(r); }
+  double cell_y(int c) const { return mat.cell_y(c); }
   bool on_mat(int i, int j) const { return i >= 0 && i < rows && j >= 0 && j < cols; }
 };
 

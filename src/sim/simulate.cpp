@@ -96,9 +96,7 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
       const Eigen::Vector2d d = pose[j].head<2>() - c;
       local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor[std::size_t(t)]);
     }
-    for (int s = 0; s < 2; ++s)
-      if (place.foot_lift[std::size_t(s)] != 0)
-        for (int j : {s ? kRightAnkle : kLeftAnkle, s ? kRightToe : kLeftToe}) local[j].z() -= place.foot_lift[std::size_t(s)];
+    detail::lift_feet(local, place.foot_lift);
     float* frame = reads[0].frame(t);
     raster.rasterise(body, pose_body(body, local), trace != nullptr);
     const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
