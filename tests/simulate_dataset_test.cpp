@@ -187,6 +187,21 @@ TEST(ClipsAtSpeeds, EveryClipAtEverySpeedAndOneLineErrors) {
   EXPECT_EQ(clips_at_speeds(clips, {0.333333})[0].meta.motion_id, clips[0].meta.motion_id + "_x0.333333");
 }
 
+// A frame span keeps its frames on the recording's clock: the span's first
+// frame is its start (the forces files' time column), at any speed.
+TEST(ClipSpan, StartsAtItsFirstFrameOnTheRecordingsClock) {
+  ClipSource clip = embedded_clips(1, 1, 3.0, 4)[0];
+  clip.first_frame = 30;
+  clip.end_frame = 60;
+  const Motion m = load_clip(clip, kFps);
+  EXPECT_EQ(m.size(), 30);
+  EXPECT_DOUBLE_EQ(m.start_s, 30 / kFps);
+  ClipSource fast = clips_at_speeds({clip}, {1.5})[0];
+  const Motion f = load_clip(fast, kFps);
+  EXPECT_EQ(f.size(), 20);  // frames 20-40 of the clip read at 20 fps
+  EXPECT_DOUBLE_EQ(f.start_s, 30 / kFps);  // still frame 30 of the recording at 30 fps
+}
+
 // A clip a_x0.8.bvh beside a.bvh played at 0.8: one motion id for two
 // clips, refused before any clip is read (before: "added twice" once every
 // sequence was simulated).

@@ -275,6 +275,7 @@ Motion clip_span(Motion m, const ClipSource& clip) {
     throw Error::in(where, "expected a frame span within 0-" + std::to_string(m.size()) + ", found " +
                                std::to_string(first) + "-" + std::to_string(want_end));
   m.frames = std::vector<Pose>(m.frames.begin() + first, m.frames.begin() + end);
+  m.start_s += first * clip.speed / m.fps;  // the span's first frame on the recording's clock
   return m;
 }
 
