@@ -1,4 +1,5 @@
-// ptnet motions: procedural motion clips (BVH on the canonical skeleton).
+// ptnet motions: procedural motion clips, or one clip read from a motion
+// file (--from), as BVH on the canonical skeleton.
 //
 //   ptnet motions --category walking --performer 2 --take 1 --seconds 10 --out walk.bvh
 //   ptnet motions --performers 5 --takes 2 --out-dir clips/      # + clips/clips.csv
@@ -133,7 +134,8 @@ void run_set(const MotionsCli& o) {
 void setup(CLI::App& app) {
   auto opt = std::make_shared<MotionsCli>();
   CLI::App* cmd = app.add_subcommand(
-      "motions", "Generate procedural motion clips (walking, rom, freestyle, acting) as BVH on the canonical skeleton");
+      "motions", "Generate procedural motion clips (walking, rom, freestyle, acting), or convert one motion file\n"
+      "(--from: BVH or markers .trc), as BVH on the canonical skeleton");
   auto* category = cmd->add_option("--category", opt->category, "One clip: walking|rom|freestyle|acting")
                        ->check(CLI::IsMember({"walking", "rom", "freestyle", "acting"}));
   auto* performer = cmd->add_option("--performer", opt->performer, "One clip: performer (1..), sets style and height")

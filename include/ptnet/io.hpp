@@ -33,8 +33,9 @@ inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t(1) << 30;  // 1
 // followed) is one: anything else is an Error naming the path ("x.csv: is a
 // FIFO, expected a regular file", "is a folder, expected a file"), decided
 // on the opened file itself and without blocking (a FIFO never waits for a
-// writer, a device such as /dev/zero is never read). Every reader of user
-// files opens them through it.
+// writer, a device such as /dev/zero is never read). The readers of user
+// files open them through it; HDF5 files (the dataset reader checks them
+// itself) and LibTorch's own loads do not.
 class InputFile {
  public:
   explicit InputFile(const std::string& path);
@@ -60,11 +61,6 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kM
 // "a socket", "a character device", "a block device", "a regular file".
 const char* file_kind(unsigned mode);
 
-// Throws Error naming `path` unless it is a regular file (symbolic links
-// followed): "x.npy: is a FIFO, expected a regular file". For inputs whose
-// size is checked before they are read: a FIFO would block, a device
-// (/dev/zero) never end.
-void check_regular_input(const std::string& path);
 
 // Records `path` (device and inode) as an input of this run (this process):
 // no output may replace it afterwards. Readers of user data call it

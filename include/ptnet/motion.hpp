@@ -101,7 +101,8 @@ struct Motion {
   int size() const { return int(frames.size()); }
 };
 
-// The frame rates motions are resampled to (MotionOptions::fps, a dataset's fps).
+// The frame rates a dataset and a generated motion play at (a motion is
+// read at up to kReadFpsRange, below).
 inline constexpr Range kFpsRange{1, 1000};
 
 struct MotionOptions {
@@ -135,10 +136,10 @@ bool is_tpose(const Bvh& bvh, int frame, const std::array<int, kJointCount>& map
               UpAxis up);
 
 // Reads, maps, drops a leading T-pose, resamples, and runs FK; then grounds:
-// Throws Error for an options.fps that is neither a finite number <= 0 nor
-// in kReadFpsRange (NaN, infinity).
 // shifts z so that the floor (lower quartile over frames of the lowest foot
-// point: heel or toe tip) is at z = 0. Name: the file stem.
+// point: heel or toe tip) is at z = 0. Name: the file stem. Throws Error for
+// an options.fps that is neither a finite number <= 0 nor in kReadFpsRange
+// (NaN, infinity).
 Motion motion_from_bvh(const Bvh& bvh, const MotionOptions& options);
 // A BVH file, or a marker file for a path ending in .trc (motion_from_trc).
 Motion load_motion(const std::string& path, const MotionOptions& options);

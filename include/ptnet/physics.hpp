@@ -1,5 +1,5 @@
-// ptnet/physics.hpp: the simulator's ground reaction forces, and the
-// simulator checked against real force plates.
+// ptnet/physics.hpp: the simulator checked against real force plates (the
+// simulator's own ground reaction forces: ForceTable, ptnet/sim.hpp).
 //
 //   auto trials = ptnet::read_gait_trials("bench/real-gait.csv", "real-gait");
 //   ptnet::GaitTrialResult r = ptnet::run_gait_trial(trials[0], {});  // plates vs simulator vs naive
@@ -8,13 +8,11 @@
 // Units: N, s, m; BW = body weight (m g). Vertical is the lab's vertical
 // axis of the marker file (detected, see ptnet/markers.hpp).
 //
-// Dimension legend: T simulated frames, N plate samples, P plates.
+// Dimension legend: T simulated frames.
 #pragma once
 
-#include <Eigen/Core>
 #include <array>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "ptnet/body_spec.hpp"
@@ -98,8 +96,10 @@ struct GaitTrialResult {
 };
 GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions& options);
 
-// `out_dir`/results.json, index.html (force against time, per trial) and
-// <trial>_sim.mot; refuses to overwrite unless `force`.
+// `out_dir`/results.json, index.html (force against time, per trial), and
+// per trial <trial>_sim.mot (the simulator's forces), <trial>_frames.csv
+// (every frame of plates, simulator and naive reference), <trial>_total.svg
+// and <trial>_feet.svg; refuses to overwrite unless `force`.
 void write_physics_report(const std::vector<GaitTrialResult>& results, const std::string& out_dir, bool force);
 
 }  // namespace ptnet

@@ -57,6 +57,9 @@ struct ClipSource {
 
 // Allowed playback speeds of a clip (ClipSource::speed).
 inline constexpr Range kClipSpeedRange{0.25, 4};
+// A clip played at the slowest speed into the fastest dataset is read at
+// kFpsRange.hi / kClipSpeedRange.lo: the motion reader must take that rate.
+static_assert(kFpsRange.hi / kClipSpeedRange.lo <= kReadFpsRange.hi, "kReadFpsRange too narrow for slow clips");
 
 // Every clip at every speed of `speeds`, clip-major: time-scale augmentation
 // of a training set. A clip at speed s != 1 is motion_id "<id>_x<s>" (e.g.

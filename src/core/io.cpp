@@ -219,12 +219,6 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
   return text;
 }
 
-void check_regular_input(const std::string& path) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) throw open_error(path, errno);
-  if (!S_ISREG(st.st_mode)) throw Error::in(path, std::string("is ") + file_kind(st.st_mode) + ", expected a regular file");
-}
-
 void note_input(const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) return;

@@ -30,6 +30,8 @@ namespace ptnet::store_protocol {
 using Clock = std::chrono::steady_clock;
 inline constexpr char kGreeting[] = "ptnet-store 2";
 inline constexpr std::size_t kGreetingMessage = 512;  // largest message before the greeting (it holds the token)
+// The greeting (an op byte, the greeting and the token, each after its 4-byte length) must fit.
+static_assert(kGreetingMessage >= 1 + 4 + sizeof(kGreeting) + 4 + kMaxToken, "kGreetingMessage too small for kMaxToken");
 
 // Equal secrets, compared in a time that does not depend on where they differ.
 inline bool same_secret(std::string_view a, std::string_view b) {

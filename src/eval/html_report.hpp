@@ -17,7 +17,7 @@ namespace ptnet {
 inline constexpr const char* kReportFiles[] = {"metrics.csv", "metrics.json", "index.html"};
 void check_report_outputs(const std::string& out_dir, bool force);
 
-// The paper's Table 2: {"seen"|"unseen": {category|"average": [RMSE kPa, binary R^2]}}.
+// The paper's Table 2: {"seen"|"unseen": {category|"average": [RMSE (its sensor's units, not kPa), binary R^2]}}.
 nlohmann::json paper_table2();
 
 // A figure of one pair (source / ground truth / transferred / |error|).

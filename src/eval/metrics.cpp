@@ -19,8 +19,17 @@ void check_values(const float* predicted, const float* truth, std::size_t n, con
 }
 }  // namespace
 
-double rmse(const float* predicted, const float* truth, std::size_t n) {
-  check_values(predicted, truth, n, "rmse");
+namespace {
+// A binarisation threshold: NaN would compare false everywhere (every cell
+// "no contact", R^2 1) and a negative one marks every cell as contact.
+void check_threshold(double threshold_kpa, const char* what) {
+  if (!kThresholdKpaRange.contains(threshold_kpa))
+    throw Error(std::string(what) + ": threshold_kpa: expected a finite number >= 0, found " +
+                number_text(threshold_kpa));
+}
+
+// The metrics on checked values (compare checks its arrays once for all three).
+double rmse_of(const float* predicted, const float* truth, std::size_t n) {
   if (n == 0) return 0;
   double sse = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -30,19 +39,7 @@ double rmse(const float* predicted, const float* truth, std::size_t n) {
   return std::sqrt(sse / double(n));
 }
 
-namespace {
-// A binarisation threshold: NaN would compare false everywhere (every cell
-// "no contact", R^2 1) and a negative one marks every cell as contact.
-void check_threshold(double threshold_kpa, const char* what) {
-  if (!kThresholdKpaRange.contains(threshold_kpa))
-    throw Error(std::string(what) + ": threshold_kpa: expected a finite number >= 0, found " +
-                number_text(threshold_kpa));
-}
-}  // namespace
-
-double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
-  check_threshold(threshold_kpa, "binary_r2");
-  check_values(predicted, truth, n, "binary_r2");
+double binary_r2_of(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
   std::size_t ones = 0, mismatches = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;
@@ -52,10 +49,7 @@ double binary_r2(const float* predicted, const float* truth, std::size_t n, doub
   return binary_r2_from_counts(double(mismatches), double(ones), double(n));
 }
 
-double contact_iou(const float* predicted, const float* truth, std::size_t n,
-                   double threshold_kpa) {
-  check_threshold(threshold_kpa, "contact_iou");
-  check_values(predicted, truth, n, "contact_iou");
+double contact_iou_of(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
   std::size_t both = 0, either = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool t = truth[i] > threshold_kpa, p = predicted[i] > threshold_kpa;
@@ -63,6 +57,24 @@ double contact_iou(const float* predicted, const float* truth, std::size_t n,
     either += (t || p);
   }
   return either == 0 ? 1.0 : double(both) / double(either);
+}
+}  // namespace
+
+double rmse(const float* predicted, const float* truth, std::size_t n) {
+  check_values(predicted, truth, n, "rmse");
+  return rmse_of(predicted, truth, n);
+}
+
+double binary_r2(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
+  check_threshold(threshold_kpa, "binary_r2");
+  check_values(predicted, truth, n, "binary_r2");
+  return binary_r2_of(predicted, truth, n, threshold_kpa);
+}
+
+double contact_iou(const float* predicted, const float* truth, std::size_t n, double threshold_kpa) {
+  check_threshold(threshold_kpa, "contact_iou");
+  check_values(predicted, truth, n, "contact_iou");
+  return contact_iou_of(predicted, truth, n, threshold_kpa);
 }
 
 SequenceMetrics compare(const PressureSequence& predicted, const PressureSequence& truth,
@@ -80,9 +92,11 @@ SequenceMetrics compare(const PressureSequence& predicted, const PressureSequenc
                 std::to_string(truth.mat.rows) + " x " + std::to_string(truth.mat.cols) + ")");
   const std::size_t n = truth.kpa.size();
   SequenceMetrics m;
-  m.rmse_kpa = rmse(predicted.kpa.data(), truth.kpa.data(), n);
-  m.binary_r2 = binary_r2(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
-  m.contact_iou = contact_iou(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
+  check_threshold(options.threshold_kpa, "binary_r2");
+  check_values(predicted.kpa.data(), truth.kpa.data(), n, "compare");
+  m.rmse_kpa = rmse_of(predicted.kpa.data(), truth.kpa.data(), n);
+  m.binary_r2 = binary_r2_of(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
+  m.contact_iou = contact_iou_of(predicted.kpa.data(), truth.kpa.data(), n, options.threshold_kpa);
 
   double force_p = 0, force_t = 0, cop_sum_m = 0;
   for (int t = 0; t < truth.frames(); ++t) {

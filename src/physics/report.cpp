@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <iomanip>
 #include <sstream>
 
 #include "ptnet/error.hpp"
@@ -44,20 +43,19 @@ nlohmann::ordered_json source_json(const ForceSource& s) {
 // Every frame of a trial: time, then total, left, right force (BW) and the
 // left and right CoP along the foot of the plates, the simulator and the
 // naive reference.
-std::string series_csv(const GaitTrialResult& r) {
-  std::ostringstream o;
-  o << std::setprecision(6) << "time_s";
+void write_series(const GaitTrialResult& r, const std::string& path, bool force) {
+  std::vector<std::string> columns{"time_s"};
   for (const ForceSource* s : {&r.plates, &r.simulated, &r.naive})
-    for (const char* c : {"_total_bw", "_left_bw", "_right_bw", "_left_cop_u", "_right_cop_u"}) o << "," << s->name << c;
-  o << "\n";
+    for (const char* c : {"_total_bw", "_left_bw", "_right_bw", "_left_cop_u", "_right_cop_u"})
+      columns.push_back(s->name + c);
+  std::vector<std::vector<double>> rows;
   for (std::size_t t = 0; t < r.time_s.size(); ++t) {
-    o << r.time_s[t];
+    rows.push_back({r.time_s[t]});
     for (const ForceSource* s : {&r.plates, &r.simulated, &r.naive})
-      o << "," << s->total_bw[t] << "," << s->foot_bw[t][0] << "," << s->foot_bw[t][1] << "," << s->cop_u[t][0] << ","
-        << s->cop_u[t][1];
-    o << "\n";
+      rows.back().insert(rows.back().end(),
+                         {s->total_bw[t], s->foot_bw[t][0], s->foot_bw[t][1], s->cop_u[t][0], s->cop_u[t][1]});
   }
-  return o.str();
+  write_table_file(path, columns, rows, "", force);
 }
 
 std::string cell(double v, int digits) { return std::isfinite(v) ? fixed_text(v, digits) : "&ndash;"; }
@@ -108,7 +106,7 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
        "<th>flight frames found</th><th>CoP along the foot, RMS (foot lengths)</th><th>whole contacts matched</th></tr>\n";
   for (const auto& r : results) {
     write_force_table(r.table, path(r.trial.name + "_sim.mot"), force);
-    write_text_file(path(r.trial.name + "_frames.csv"), series_csv(r), force);
+    write_series(r, path(r.trial.name + "_frames.csv"), force);
     write_text_file(path(r.trial.name + "_total.svg"), chart(r, false), force);
     write_text_file(path(r.trial.name + "_feet.svg"), chart(r, true), force);
     nlohmann::ordered_json j;
