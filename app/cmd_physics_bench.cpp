@@ -14,7 +14,7 @@
 
 #include "command.hpp"
 #include "ptnet/error.hpp"
-#include "ptnet/physics.hpp"
+#include "ptnet/plates.hpp"
 
 namespace ptnet::cli {
 namespace {

@@ -1,6 +1,6 @@
 // The cost of distributed training's one collective: a Gloo all-reduce (sum)
 // of a float32 buffer between two ranks on 127.0.0.1, through the same
-// Communicator as `ptnet train --world-size 2` (src/dist/communicator.hpp).
+// Communicator as `ptnet train --world-size 2` (src/distributed/communicator.hpp).
 // Sizes: the gradients of the fast preset's frame network and of the
 // paper's network (what a step all-reduces), and 1 / 16 MB.
 //
@@ -16,7 +16,7 @@
 #include <iostream>
 #include <torch/torch.h>
 
-#include "dist/communicator.hpp"
+#include "distributed/communicator.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/model_config.hpp"
 #include "ptnet/train.hpp"

@@ -21,8 +21,8 @@
 #include "cli_test_util.hpp"
 #include "data_test_util.hpp"
 #include "ptnet/error.hpp"
-#include "dist/rendezvous_store.hpp"
-#include "dist/store_protocol.hpp"
+#include "distributed/rendezvous_store.hpp"
+#include "distributed/store_protocol.hpp"
 
 using namespace ptnet;
 using ptnet::testing_cli::slurp;

@@ -25,7 +25,7 @@
 #include <thread>
 
 #include "cli_test_util.hpp"
-#include "dist/store_protocol.hpp"
+#include "distributed/store_protocol.hpp"
 #include "train_synthetic.hpp"
 
 using ptnet::testing_cli::run_program;

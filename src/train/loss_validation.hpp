@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "batcher.hpp"
-#include "dist/communicator.hpp"
+#include "distributed/communicator.hpp"
 #include "ptnet/model.hpp"
 #include "ptnet/train.hpp"
 #include "window_index.hpp"

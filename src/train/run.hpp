@@ -13,7 +13,7 @@
 
 #include "batcher.hpp"
 #include "checkpoint.hpp"
-#include "dist/communicator.hpp"
+#include "distributed/communicator.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/model.hpp"
 #include "ptnet/train.hpp"

@@ -5,7 +5,7 @@
 // run.hpp. The pieces they run: the options (train_options.cpp), the
 // batches (batcher.cpp), the loss and validation (loss_validation.cpp),
 // checkpoint.pt (checkpoint.cpp), the model folder (model_folder.cpp) and
-// the ranks (src/dist/communicator.cpp).
+// the ranks (src/distributed/communicator.cpp).
 //
 // Dimension legend: N windows in a batch, T window frames, H x W mat cells,
 // A = 3 attributes.

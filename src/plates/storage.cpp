@@ -5,10 +5,10 @@
 #include <cmath>
 #include <map>
 
-#include "physics/physics_internal.hpp"
+#include "plates/plates_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/physics.hpp"
+#include "ptnet/plates.hpp"
 #include "ptnet/strings.hpp"
 
 namespace ptnet {

@@ -1,6 +1,6 @@
-// Internal: the steps of the physics bench (see ptnet/physics.hpp): the
+// Internal: the steps of the physics bench (see ptnet/plates.hpp): the
 // force plates' file read, the contacts of a force series, the comparison.
-// Tests include it as "physics/physics_internal.hpp".
+// Tests include it as "plates/plates_internal.hpp".
 //
 // Dimension legend: T frames of the trial, N plate samples.
 #pragma once
@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ptnet/physics.hpp"
+#include "ptnet/plates.hpp"
 
 namespace ptnet {
 

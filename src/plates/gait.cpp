@@ -1,10 +1,10 @@
 // Gait events and figures of a vertical-force series: contacts (threshold
 // crossings interpolated between samples), peaks, impulses, loading rates;
-// and the comparison of a source with the plates (physics_internal.hpp).
+// and the comparison of a source with the plates (plates_internal.hpp).
 #include <algorithm>
 #include <cmath>
 
-#include "physics_internal.hpp"
+#include "plates_internal.hpp"
 
 namespace ptnet {
 

@@ -1,4 +1,4 @@
-// ptnet/physics.hpp: the simulator checked against real force plates (the
+// ptnet/plates.hpp: the simulator checked against real force plates (the
 // simulator's own ground reaction forces: ForceTable, ptnet/sim.hpp).
 //
 //   auto trials = ptnet::read_gait_trials("bench/real-gait.csv", "real-gait");

@@ -1,5 +1,5 @@
-// dist/communicator.hpp: the ranks of a data-parallel run, on PyTorch's
-// c10d with the Gloo backend. Private to the dist stage, which the train
+// distributed/communicator.hpp: the ranks of a data-parallel run, on PyTorch's
+// c10d with the Gloo backend. Private to the distributed stage, which the train
 // stage uses (its users see TrainOptions' world_size, rank, rendezvous,
 // dist_timeout_s and dist_token, the fields the messages here name): c10d
 // and Gloo are included by communicator.cpp (and the stores by

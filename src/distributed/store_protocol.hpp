@@ -1,6 +1,6 @@
-// dist/store_protocol.hpp: the wire format of the tcp rendezvous store,
+// distributed/store_protocol.hpp: the wire format of the tcp rendezvous store,
 // shared by its server (store_server.cpp) and its client
-// (rendezvous_store.cpp). Private to the dist stage.
+// (rendezvous_store.cpp). Private to the distributed stage.
 //
 // A message is a u32 length N (little-endian, N <= kMaxStoreMessage) and N
 // bytes: an op byte, then fields, each a u32 length and its bytes (an

@@ -8,7 +8,7 @@
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
-#include "ptnet/physics.hpp"
+#include "ptnet/plates.hpp"
 #include "ptnet/viz.hpp"
 
 namespace ptnet {

@@ -8,7 +8,7 @@
 
 #include "core/anthropometry.hpp"
 #include "core/csv.hpp"
-#include "physics_internal.hpp"
+#include "plates_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/markers.hpp"
 #include "ptnet/strings.hpp"

@@ -14,11 +14,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "physics/physics_internal.hpp"
+#include "plates/plates_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"
-#include "ptnet/physics.hpp"
+#include "ptnet/plates.hpp"
 
 namespace fs = std::filesystem;
 

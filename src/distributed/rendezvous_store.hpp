@@ -1,6 +1,6 @@
-// dist/rendezvous_store.hpp: the key-value store through which the ranks of
+// distributed/rendezvous_store.hpp: the key-value store through which the ranks of
 // a distributed run meet (c10d::Store, used by Communicator::join and by
-// Gloo's rendezvous). Private to the dist stage.
+// Gloo's rendezvous). Private to the distributed stage.
 //
 //   auto store = tcp_store("127.0.0.1", 29500, /*serve=*/rank == 0, 2, 60s, token);
 //   auto store = file_store("/shared/run.rdv", rank, 2, 60s);
