@@ -71,13 +71,13 @@ void train_and_evaluate(const DemoCli& c, const std::string& data_path, const st
 void run(const DemoCli& c) {
   namespace fs = std::filesystem;
   const bool quiet = globals().quiet;
-  make_folder(c.out);
   const std::string data_path = (fs::path(c.out) / "data.h5").string();
   const std::string bodies_path = (fs::path(c.out) / "bodies.csv").string();
   const std::string figure_path = (fs::path(c.out) / "walking_two_bodies.png").string();
   const std::string model_dir = (fs::path(c.out) / "model").string();
   const std::string report_dir = (fs::path(c.out) / "report").string();
-  for (const auto& p : {data_path, bodies_path, figure_path}) check_output_path(p, c.force);
+  check_outputs_in_folder(c.out, {"data.h5", "bodies.csv", "walking_two_bodies.png"}, c.force);  // before creating it
+  make_folder(c.out);
   if (!c.no_train)
     for (const auto& p : {model_dir, report_dir}) check_output_folder(p, c.force);
 

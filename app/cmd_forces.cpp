@@ -14,8 +14,8 @@ struct ForcesCli {
   std::string dataset;
   std::vector<std::string> sequences;
   std::string out;
-  std::string format = "mot";
-  double contact_kpa = 0.5;
+  ptnet::TableFormat format = ptnet::TableFormat::mot;
+  double contact_kpa = ptnet::kContactKpa;
   bool force = false;
 };
 
@@ -40,12 +40,10 @@ void setup(CLI::App& app) {
   cmd->add_option("dataset", o->dataset, "Dataset file (.h5)")->required();
   cmd->add_option("-s,--sequence", o->sequences, "Sequence (repeat for several; default: every sequence)");
   cmd->add_option("-o,--out", o->out, "Output folder: one <sequence>.<format> per sequence")->required();
-  cmd->add_option("--format", o->format, "mot (OpenSim storage) or csv")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"mot", "csv"}));
+  ptnet::cli::add_table_format(cmd, "--format", o->format, "mot (OpenSim storage) or csv");
   cmd->add_option("--contact", o->contact_kpa, "Contact area: cells above this many kPa")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(ptnet::cli::in_range(ptnet::kPressureRangeKpa));
   cmd->add_flag("-f,--force", o->force, "Overwrite existing output files");
   cmd->callback([o] { run(*o); });
 }

@@ -75,7 +75,7 @@ void progress(const std::string& line) {
 
 void run_one(const MotionsCli& o) {
   const Category c = parse_category(o.category);
-  check_output_path(o.out, o.force);
+  check_bvh_output(o.out, o.force);
   const Motion m = generate_motion(generate_options(o, c, o.performer, o.take));
   write_bvh(motion_to_bvh(m), o.out, o.force);
   char height[32];
@@ -87,7 +87,7 @@ void run_one(const MotionsCli& o) {
 // A motion file (BVH or .trc markers) on the canonical skeleton, as BVH: a
 // marker trial's joints for any BVH viewer.
 void run_from(const MotionsCli& o) {
-  check_output_path(o.out, o.force);
+  check_bvh_output(o.out, o.force);
   MotionOptions mo;
   mo.fps = o.fps;
   mo.static_markers = o.static_markers;
@@ -101,7 +101,6 @@ void run_from(const MotionsCli& o) {
 void run_set(const MotionsCli& o) {
   namespace fs = std::filesystem;
   const std::vector<Category> categories = parse_categories(o.categories);
-  make_folder(o.out_dir);
   struct Clip {
     std::string file;
     Category category;
@@ -112,10 +111,12 @@ void run_set(const MotionsCli& o) {
     for (Category c : categories)
       for (int t = 1; t <= o.takes; ++t)
         clips.push_back({ptnet::motion_id(p, c, t) + ".bvh", c, p, t});
-  // Refuse before writing anything.
+  // Refuse before creating or writing anything.
   const std::string manifest = (fs::path(o.out_dir) / "clips.csv").string();
-  check_output_path(manifest, o.force);
-  for (const Clip& clip : clips) check_output_path((fs::path(o.out_dir) / clip.file).string(), o.force);
+  std::vector<std::string> files{"clips.csv"};
+  for (const Clip& clip : clips) files.push_back(clip.file);
+  check_outputs_in_folder(o.out_dir, files, o.force);
+  make_folder(o.out_dir);
 
   std::string csv = "file,subject,category,take\n";
   for (std::size_t i = 0; i < clips.size(); ++i) {
@@ -150,10 +151,10 @@ void setup(CLI::App& app) {
   auto* categories = cmd->add_option("--categories", opt->categories, "A set: comma-separated categories")
                          ->capture_default_str();
   auto* out_dir = cmd->add_option("--out-dir", opt->out_dir, "A set: output folder (one BVH per clip + clips.csv)");
-  cmd->add_option("--seconds", opt->seconds, "Clip length (s)")->capture_default_str()->check(in_range(0.1, 3600));
+  auto* seconds = cmd->add_option("--seconds", opt->seconds, "Clip length (s)")->capture_default_str()->check(in_range(0.1, 3600));
   cmd->add_option("--fps", opt->fps, "Frame rate (Hz)")->capture_default_str()->check(in_range(kFpsRange));
-  cmd->add_option("--seed", opt->seed, "Seed, mixed with performer and take")->capture_default_str();
-  cmd->add_option("--height-cm", opt->height_cm, "Body height (cm); default: the performer's own")
+  auto* seed = cmd->add_option("--seed", opt->seed, "Seed, mixed with performer and take")->capture_default_str();
+  auto* height = cmd->add_option("--height-cm", opt->height_cm, "Body height (cm); default: the performer's own")
       ->check(in_range(50, 250));
   auto* from = cmd->add_option("--from", opt->from,
                                "One clip read from a motion file (BVH, or markers .trc) instead of generated: its\n"
@@ -163,6 +164,7 @@ void setup(CLI::App& app) {
   cmd->add_flag("--force", opt->force, "Overwrite existing files");
   out->excludes(out_dir);
   from->needs(out)->excludes(category)->excludes(out_dir);
+  for (auto* o : {seconds, seed, height, performer, take}) from->excludes(o);  // the generator's, not a file's
   static_markers->needs(from);
   map->needs(from);
   for (auto* o : {performers, takes, categories}) o->excludes(out)->needs(out_dir);

@@ -2,8 +2,8 @@
 //
 //   ptnet physics-bench --trials bench/real-gait.csv --data real-gait --out physics
 //
-// Each trial of the trials CSV (trial, markers, plates, sex, height_cm,
-// weight_kg[, static, marker_map]; docs/physics.md) is simulated on a body
+// Each trial of the trials CSV (its columns: kGaitTrialColumns,
+// docs/physics.md) is simulated on a body
 // of the subject's sex, stature and mass; its vertical force, contacts and
 // centre of pressure are set beside the plates' and the naive reference's.
 // Writes OUT/results.json, OUT/index.html and OUT/<trial>_sim.mot; prints
@@ -29,12 +29,14 @@ std::string figure(double v, int digits) { return std::isfinite(v) ? fixed_text(
 
 void run(const PhysicsBenchCli& c) {
   const std::vector<GaitTrial> trials = read_gait_trials(c.trials, c.data);
+  check_physics_report(trials, c.out, c.force);  // before any trial runs
   PhysicsBenchOptions o;
   o.fps = c.fps;
   std::vector<GaitTrialResult> results;
   for (const GaitTrial& t : trials) {
     if (!globals().quiet) std::fprintf(stderr, "physics-bench: %s\n", t.name.c_str());
     results.push_back(run_gait_trial(t, o));
+    for (const std::string& w : check_gait_result(results.back(), o)) print_warning("physics-bench", t.plates, w);
   }
   write_physics_report(results, c.out, c.force);
   std::printf("%-10s %-9s %9s %8s %9s %8s %9s %8s %8s\n", "trial", "source", "rmse_bw", "peak_%", "stance_ms",
@@ -57,8 +59,7 @@ void setup(CLI::App& app) {
       "on a body of the subject's sex, stature and mass; vertical force RMSE, peaks, stance, loading\n"
       "rate, stride impulse, flight and the centre of pressure along the foot, beside the naive\n"
       "reference (docs/physics.md).");
-  cmd->add_option("--trials", c->trials, "Trials CSV (trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map])")
-      ->required();
+  cmd->add_option("--trials", c->trials, "Trials CSV (" + gait_trial_columns_text() + "; docs/physics.md)")->required();
   cmd->add_option("--data", c->data, "Folder the CSV's file names are relative to (default: the CSV's folder)");
   cmd->add_option("-o,--out", c->out, "Output folder (results.json, index.html, TRIAL_sim.mot)")->required();
   cmd->add_option("--fps", c->fps, "Simulation rate (default: each marker file's rate)")->check(in_range(0, 1000));

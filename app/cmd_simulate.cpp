@@ -133,8 +133,7 @@ void setup(CLI::App& app) {
   cmd->add_option("--forces", c->dataset.forces_dir,
                   "Also write each sequence's simulated ground reaction (total and per foot, N and body weights,\n"
                   "CoP along the foot) into this folder as NAME.mot (OpenSim storage) or NAME.csv");
-  cmd->add_option("--forces-format", c->dataset.forces_format, "mot or csv")
-      ->capture_default_str()->check(CLI::IsMember({"mot", "csv"}));
+  add_table_format(cmd, "--forces-format", c->dataset.forces_format, "mot or csv");
   cmd->add_option("--marker-map", c->marker_map,
                   ".trc files the clips CSV does not describe: a shipped marker map (delaware, plugin-gait, common)\n"
                   "or a map file (default: the shipped map that places the file)");

@@ -73,6 +73,25 @@ inline CLI::Validator thread_count(bool zero_means_default) {
   return in_range(zero_means_default ? 0 : 1, max_threads());
 }
 
+// A TableFormat option ("mot" or "csv": parse_table_format, a usage error
+// otherwise) that sets `format`.
+inline CLI::Option* add_table_format(CLI::App* cmd, const std::string& flag, TableFormat& format,
+                                     const std::string& help) {
+  const auto problem = [](std::string& text) -> std::string {
+    try {
+      parse_table_format(text);
+      return "";
+    } catch (const Error& e) {
+      return e.what();
+    }
+  };
+  return cmd
+      ->add_option_function<std::string>(flag, [&format](const std::string& text) { format = parse_table_format(text); },
+                                         help)
+      ->check(CLI::Validator(problem, "mot|csv"))
+      ->default_str(table_format_name(format));
+}
+
 // A warning of the library's about a result (TrainResult::warning,
 // EvaluationResult::warning) on stderr, "train: warning: model/: ...", with
 // or without --quiet; nothing when `warning` is empty.

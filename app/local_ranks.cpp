@@ -77,7 +77,7 @@ std::string random_token() {
 
 // This process's command line, without `--nproc N` / `--nproc=N`.
 std::vector<std::string> own_arguments() {
-  const std::string raw = read_text_file("/proc/self/cmdline", 1 << 20);
+  const std::string raw = read_file_bytes("/proc/self/cmdline", 1 << 20);
   std::vector<std::string> args;
   for (std::size_t i = 0; i < raw.size();) {
     const std::size_t end = raw.find('\0', i);

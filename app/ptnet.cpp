@@ -63,6 +63,7 @@ std::string flag_of(const std::string& command, std::string_view field) {
       {"train", "dist_token", ptnet::cli::kDistTokenVariable},  // an environment variable
       {"evaluate", "threshold_kpa", "--threshold"},
       {"simulate", "pitch_m", "--pitch"},
+      {"simulate", "forces_dir", "--forces"},
       {"render", "sequences", "--sequence"},
       {"forces", "contact_kpa", "--contact"},
   };
@@ -138,6 +139,14 @@ int main(int argc, char** argv) {
   std::stable_sort(commands.begin(), commands.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [order, setup] : commands) setup(app);
+  // Arguments are text too (paths and names that outputs record, and that
+  // JSON and HDF5 hold as UTF-8): refused in one line before any work.
+  for (int i = 1; i < argc; ++i)
+    if (ptnet::utf8_invalid_at(argv[i]) != std::string::npos) {
+      std::cerr << "ptnet: error: argument " << ptnet::escaped(argv[i], 60)
+                << " is not UTF-8 (ptnet reads names and paths as UTF-8: rename the file)\n";
+      return 2;
+    }
   const std::string word = first_word(*quiet, argc, argv);
 #if !PTNET_WITH_TORCH
   // Not one of this executable's commands (or --help, --version): ptnet-torch

@@ -30,7 +30,7 @@ void bind_transfer(py::module_& m) {
   py::class_<Transfer>(m, "Transfer",
                        "A trained model folder (config.json + model.pt, validated): run() transfers a pressure "
                        "sequence from one body to another, as `ptnet transfer` does.")
-      .def(py::init([](const std::string& model_dir, int stride, int batch, int threads, const std::string& device,
+      .def(py::init([](const PathArg& model_dir, int stride, int batch, int threads, const std::string& device,
                        bool raw) {
              TransferOptions o;
              o.stride = stride;
@@ -39,7 +39,7 @@ void bind_transfer(py::module_& m) {
              o.device = device;
              o.raw = raw;
              py::gil_scoped_release release;
-             return Transfer(model_dir, o);
+             return Transfer(model_dir.string(), o);
            }),
            py::arg("model_dir"), py::arg("stride") = TransferOptions{}.stride,
            py::arg("batch") = TransferOptions{}.batch, py::arg("threads") = TransferOptions{}.threads,
@@ -142,16 +142,16 @@ void bind_model(py::module_& m) {
   bind_metrics(m);
   bind_baselines(m);
   m.def("export_weights",
-        [](const std::string& model_dir, const std::string& out_path, bool force) {
+        [](const PathArg& model_dir, const PathArg& out_path, bool force) {
           py::gil_scoped_release release;
-          export_state_dict(model_dir, out_path, force);
+          export_state_dict(model_dir.string(), out_path.string(), force);
         },
         py::arg("model_dir"), py::arg("out_path"), py::arg("force") = false,
         "`ptnet export`: the model folder's weights as a PyTorch state dict (torch.load; ptnet_torch).");
   m.def("import_weights",
-        [](const std::string& weights_path, const std::string& config_dir, const std::string& out_dir, bool force) {
+        [](const PathArg& weights_path, const PathArg& config_dir, const PathArg& out_dir, bool force) {
           py::gil_scoped_release release;
-          import_state_dict(weights_path, config_dir, out_dir, force);
+          import_state_dict(weights_path.string(), config_dir.string(), out_dir.string(), force);
         },
         py::arg("weights_path"), py::arg("config_dir"), py::arg("out_dir"), py::arg("force") = false,
         "`ptnet import-weights`: a state dict saved in PyTorch + config_dir's config.json -> model folder out_dir.");

@@ -103,7 +103,7 @@ void bind_bodies_and_simulate(py::module_& m) {
       py::arg("seed") = 1, py::arg("sampling") = "paper",
       "Bodies drawn as in the paper (ptnet bodies): ids f01.., m01.. (retargeted), of01.., om01.. (original); "
       "sampling 'paper' (Gaussian draws) or 'cover' (a Latin hypercube over mean +- 2.5 sd).");
-  m.def("read_bodies_csv", &read_bodies_csv, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
+  m.def("read_bodies_csv", [](const PathArg& path) { return read_bodies_csv(path.string()); }, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
   m.def("sequence_seed", &sequence_seed, py::arg("seed"), py::arg("name"),
         "The sensor seed `ptnet simulate --seed SEED` gives sequence NAME (<motion_id>__<body_id>).");
 
@@ -161,8 +161,8 @@ void bind_motion(py::module_& m) {
             py::gil_scoped_release release;
             return retarget(mo, height_cm);
           }, py::arg("height_cm"), "The motion on a body of height_cm (bone lengths replaced, rotations kept).")
-      .def("write_bvh", [](const Motion& mo, const std::string& path, bool force) {
-            write_bvh(motion_to_bvh(mo), path, force);
+      .def("write_bvh", [](const Motion& mo, const PathArg& path, bool force) {
+            write_bvh(motion_to_bvh(mo), path.string(), force);
           }, py::arg("path"), py::arg("force") = false, "Writes the motion as BVH (canonical skeleton, cm, y up).")
       .def("__repr__", [](const Motion& mo) {
         return "<ptnet.Motion '" + mo.name + "': " + std::to_string(mo.size()) + " frames at " +
@@ -170,7 +170,7 @@ void bind_motion(py::module_& m) {
       });
 
   m.def("read_bvh",
-        [](const std::string& path, const std::string& units, const std::string& up, double fps,
+        [](const PathArg& path, const std::string& units, const std::string& up, double fps,
            double metres_per_unit, bool keep_tpose) {
           MotionOptions o;
           o.units = parse_units(units);
@@ -179,7 +179,7 @@ void bind_motion(py::module_& m) {
           o.metres_per_unit = metres_per_unit;
           o.keep_tpose = keep_tpose;
           py::gil_scoped_release release;
-          return load_motion(path, o);
+          return load_motion(path.string(), o);
         },
         py::arg("path"), py::arg("units") = "auto", py::arg("up") = "y", py::arg("fps") = kFps,
         py::arg("metres_per_unit") = 0.0, py::arg("keep_tpose") = false,
@@ -187,18 +187,18 @@ void bind_motion(py::module_& m) {
         "units: auto|m|cm|mm|in|cmu; up: y|z.");
 
   m.def("read_motion",
-        [](const std::string& path, double fps, const std::string& marker_map, const std::string& static_markers,
+        [](const PathArg& path, double fps, const PathArg& marker_map, const PathArg& static_markers,
            double max_gap_s, bool remove_belt, const std::string& units, const std::string& up) {
           MotionOptions o;
           o.fps = fps;
-          o.marker_map = marker_map;
-          o.static_markers = static_markers;
+          o.marker_map = marker_map.string();
+          o.static_markers = static_markers.string();
           o.max_gap_s = max_gap_s;
           o.remove_belt = remove_belt;
           o.units = parse_units(units);
           o.up = parse_up_axis(up);
           py::gil_scoped_release release;
-          return load_motion(path, o);
+          return load_motion(path.string(), o);
         },
         py::arg("path"), py::kw_only(), py::arg("fps") = kFps, py::arg("marker_map") = "",
         py::arg("static") = "", py::arg("max_gap_s") = MotionOptions{}.max_gap_s,

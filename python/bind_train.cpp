@@ -62,11 +62,12 @@ TrainOverrides overrides_from(const py::kwargs& kwargs) {
 
 void bind_train(py::module_& m) {
   m.def("train",
-        [](const std::string& data, const std::string& out, const std::string& preset, bool resume,
-           const std::string& init, bool identity_pairs, bool force, bool strict, const py::kwargs& overrides) {
+        [](const PathArg& data_path, const PathArg& out_path, const std::string& preset, bool resume,
+           const PathArg& init, bool identity_pairs, bool force, bool strict, const py::kwargs& overrides) {
           TrainOptions o = TrainOptions::from_preset(preset, overrides_from(overrides));
           o.resume = resume;
-          o.init = init;
+          o.init = init.string();
+          const std::string data = data_path.string(), out = out_path.string();
           o.identity_pairs = identity_pairs;
           o.force = force;
           o.strict = strict;

@@ -11,6 +11,9 @@
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
 
 #include <string>
 #include <vector>
@@ -22,6 +25,10 @@ namespace ptnet::python {
 namespace py = pybind11;
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// Every path argument: a str or any os.PathLike (pathlib.Path), as Python's
+// own open() takes; .string() for the library. "" stays "" (not given).
+using PathArg = std::filesystem::path;
 
 // A numpy array of `shape` owning `data` (moved, not copied).
 template <typename T>

@@ -289,7 +289,7 @@ TEST(Dataset, WriterValidatesWhatItIsGiven) {
             path + ": sequence 'walk__b1': non-finite value at frame 3 row 4 col 5");
   auto m = testing_util::meta_for("walk", "b1");
   m.name = "a/b";
-  EXPECT_EQ(error_of([&] { w.add(m, good); }), path + ": invalid sequence name 'a/b' (empty or contains '/')");
+  EXPECT_EQ(error_of([&] { w.add(m, good); }), path + ": invalid sequence name 'a/b': it holds '/'");
   w.add(testing_util::meta_for("walk", "b1"), good);
   EXPECT_EQ(error_of([&] { w.add(testing_util::meta_for("walk", "b1"), good); }),
             path + ": sequence 'walk__b1' added twice");

@@ -35,15 +35,20 @@ TEST(ForcePlates, PlatesAreColumnGroupsReadByName) {
   EXPECT_EQ(p.plates[0].prefix, "ground_force_");
   EXPECT_EQ(p.plates[1].prefix, "1_ground_force_");
   EXPECT_EQ(p.time_s, (std::vector<double>{0, 0.01}));
-  EXPECT_EQ(p.plates[0].force_n[1], Eigen::Vector3d(2, 710, 4));
-  EXPECT_EQ(p.plates[1].cop_m[1], Eigen::Vector3d(0.5, 0, 0.1));
+  EXPECT_EQ(Eigen::Vector3d(p.plates[0].force_n[1]), Eigen::Vector3d(2, 710, 4));
+  EXPECT_TRUE(Eigen::Vector3d(p.plates[1].cop_m[1]).isApprox(Eigen::Vector3d(0.5, 0, 0.1), 1e-7));  // single precision
+  const std::string plate = "endheader\ntime\tforce_vx\tforce_vy\tforce_vz\tforce_px\tforce_py\tforce_pz\n";
   for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
            {"time\tx\n0\t1\n", "t.mot: expected an OpenSim storage header ending in 'endheader', found none"},
            {"endheader\ntime\tx\n0\t1\n", "t.mot: no force plate columns (expected PREFIX vx vy vz px py pz, e.g. "
                                           "ground_force_vx); found time x"},
-           {"endheader\ntime\tf_vx\n0\n", "t.mot:3: expected 2 values (one per column), found 1"},
-           {"endheader\ntime\tf_vx\n0\tabc\n", "t.mot:3: expected a number in column f_vx, found 'abc'"},
-           {"endheader\ntime\tf_vx\n1\t0\n0\t0\n", "t.mot: expected increasing times, found 0 after 1"}}) {
+           {"endheader\nx\tforce_vx\n0\t1\n", "t.mot: no 'time' column"},
+           {plate, "t.mot: no rows after the column names"},
+           {plate + "0\t1\n", "t.mot:3: expected 7 values (one per column), found 2"},
+           {plate + "0\t1\t2\tabc\t4\t5\t6\n", "t.mot:3: expected a number in column force_vz, found 'abc'"},
+           {plate + "0\t1\t2\tnan\t4\t5\t6\n", "t.mot:3: expected a number in column force_vz, found 'nan'"},
+           {plate + "1\t0\t0\t0\t0\t0\t0\n0\t0\t0\t0\t0\t0\t0\n",
+            "t.mot: expected increasing times, found 0 after 1"}}) {
     try {
       ptnet::parse_grf_mot(bad, "t.mot");
       ADD_FAILURE() << bad;
@@ -91,9 +96,11 @@ TEST(ForceTable, WrittenAsOpenSimStorageAndCsv) {
   EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.csv").string(), false), ptnet::Error);  // no --force
   EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.txt").string(), false), ptnet::Error);
   const std::string mot = ptnet::read_text_file((dir / "a.mot").string());
-  EXPECT_NE(mot.find("nRows=2\nnColumns=9\n"), std::string::npos);
+  EXPECT_NE(mot.find("nRows=2\nnColumns=19\n"), std::string::npos);
   EXPECT_NE(mot.find("endheader\ntime\ttotal_force_vy\ttotal_force_bw\tl_ground_force_vy"), std::string::npos);
-  EXPECT_NE(mot.find("0\t686.7\t1\t686.7\t0\t1\t0\t0.5\tnan\n"), std::string::npos) << mot;
+  // The columns of before, then each foot's plate group (no CoP known: 0).
+  EXPECT_NE(mot.find("0\t686.7\t1\t686.7\t0\t1\t0\t0.5\tnan\t0\t0\t0\t0\t0\t0\t0\t0\t0\t0\n"), std::string::npos)
+      << mot;
   const std::string csv = ptnet::read_text_file((dir / "a.csv").string());
   EXPECT_EQ(csv.rfind("time,total_force_vy,total_force_bw,", 0), 0u);
   fs::remove_all(dir);

@@ -110,11 +110,11 @@ TEST_F(SimulateDataset, ClipsCsvRowsAndErrors) {
             csv + ":1: expected a header with column category (file,subject,category,take[,metres_per_unit,up,marker_map,static]), "
                   "found 'file,subject,take'");
   spit(csv, "file,subject,category,take\ngone.bvh,1,walking,1\n");
-  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'gone.bvh' not found");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'gone.bvh': no such file");
   // A FIFO is there, but no clip (before: "not found"; har-bench --mocap said so).
   ASSERT_EQ(::mkfifo((dir_ / "live.bvh").c_str(), 0600), 0);
   spit(csv, "file,subject,category,take\nlive.bvh,1,walking,1\n");
-  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'live.bvh' is a FIFO, expected a regular file");
+  EXPECT_EQ(error_of([&] { read_clips_csv(csv); }), csv + ":2: clip file 'live.bvh': is a FIFO, expected a regular file");
   fs::remove(dir_ / "live.bvh");
 
   // Without a CSV: stems must be unique across folders.
@@ -220,6 +220,35 @@ TEST_F(SimulateDataset, ClipIdsAreUniqueBeforeAnyWork) {
   BodySpec b = kBodies[0];
   EXPECT_EQ(error_of([&] { simulate_dataset(clips_from_files({(dir_ / "a.bvh").string()}, "", {}), {b, b}, out, {}); }),
             "simulate: body id 'f1' given twice");
+}
+
+// Ids that name sequences (and their force files) are file names, and the
+// clip's text is UTF-8, both known before any work (before: a body id "a/b"
+// failed at the first write, once a chunk was simulated; a Latin-1 stem went
+// into attributes HDF5 declares UTF-8).
+TEST_F(SimulateDataset, IdsAreFileNamesAndTextIsUtf8BeforeAnyWork) {
+  const auto clips = embedded_clips(1, 1, 2.0, 4);
+  const std::string out = (dir_ / "x.h5").string();
+  BodySpec b = kBodies[0];
+  b.id = "a/b";
+  EXPECT_EQ(error_of([&] { simulate_dataset(clips, {b}, out, {}); }),
+            "simulate: body id 'a/b' holds '/': it names the body's sequences");
+  auto latin1 = clips;
+  latin1[0].meta.source = "caf\xe9.bvh";
+  EXPECT_NE(error_of([&] { simulate_dataset(latin1, kBodies, out, {}); }).find("is not UTF-8"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// The forces folder is checked before any work (before: found once the
+// dataset was written): not the dataset's own path, no input replaced.
+TEST_F(SimulateDataset, TheForcesFolderIsCheckedBeforeAnyWork) {
+  const auto clips = embedded_clips(1, 1, 2.0, 4);
+  SimulateDatasetOptions o;
+  const std::string out = (dir_ / "x.h5").string();
+  o.forces_dir = out;
+  EXPECT_EQ(error_of([&] { simulate_dataset(clips, kBodies, out, o); }),
+            "forces_dir: " + out + " is the dataset's own path (" + out + "): give the force files a folder of their own");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(SimulateDatasetCategories, FromNames) {

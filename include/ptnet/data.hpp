@@ -27,6 +27,8 @@
 #include <vector>
 
 #include "ptnet/body_spec.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/paper.hpp"
 #include "ptnet/pressure.hpp"
 
 namespace ptnet {
@@ -115,16 +117,17 @@ class Dataset {
 // forces): per frame the vertical force in N and in body weights of the
 // sequence's body, its centre of pressure in the mat's frame (frame_load,
 // ptnet/pressure.hpp) and the contact area above `contact_kpa`, written as
-// `dir`/<name>.<format> (format "mot": OpenSim storage; "csv"; columns
+// `dir`/<name>.<format> (TableFormat: OpenSim storage or CSV; columns
 // time, ground_force_vy, ground_force_bw, mat_cop_x, mat_cop_y,
-// contact_area_cm2). `names` empty: every sequence. Every output is checked
+// contact_area_cm2). `names` empty: every sequence. `contact_kpa` in
+// kPressureRangeKpa (check_range). Every output is checked
 // before any is written (existing files need `force`); each is atomic.
 // Returns the paths written. A mat reads only what stands on it: a foot off
 // the mat is missing from its force, unlike the simulator's own ground
 // reaction (SimulateDatasetOptions::forces_dir).
 std::vector<std::string> write_mat_forces(const Dataset& dataset, const std::vector<std::string>& names,
-                                          const std::string& dir, const std::string& format, bool force,
-                                          double contact_kpa = 0.5);
+                                          const std::string& dir, TableFormat format, bool force,
+                                          double contact_kpa = kContactKpa);
 
 // Merges datasets into one at `out_path` (atomically; an existing file needs
 // `force`): the shards of one `ptnet simulate --shard K/N` run, or any

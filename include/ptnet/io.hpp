@@ -19,7 +19,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ptnet/error.hpp"
@@ -54,8 +56,57 @@ class InputFile {
 };
 
 // Reads a whole regular file (InputFile); throws Error naming the file when
-// it cannot, when it is larger than `max_bytes` or than the available memory.
+// it cannot, when it is larger than `max_bytes` or than the available memory,
+// and when it is not UTF-8 text (utf8_invalid_at, strings.hpp): "FILE:LINE:
+// expected UTF-8 text, found byte 0xE9 ...", before the caller sees any of it.
 std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
+// The same bytes, not checked as text (archives, digests of files).
+std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
+
+// What keeps InputFile from opening `path`, in its words ("no such file",
+// "is a FIFO, expected a regular file", "is a folder, expected a file"),
+// and its kind; "" when it opens. For a list's files, checked before any
+// work and said at their line.
+std::string input_file_problem(const std::string& path, ErrorKind* kind = nullptr);
+
+// `file` named in a list (a CSV) whose paths are relative to `folder`: as it
+// is when empty or absolute, else folder / file, never normalised as text
+// (the filesystem resolves "link/../x.trc" through the link, as the shell).
+std::string resolved_path(const std::string& folder, const std::string& file);
+
+// Longest line a LineReader returns.
+inline constexpr std::size_t kMaxLineBytes = std::size_t(1) << 24;  // 16 MiB
+
+// A text file (or text in memory) line by line, never whole: its memory is
+// one block of the file and the longest line. Lines are numbered from 1 and
+// returned without their end (LF or CRLF); a UTF-8 byte-order mark before
+// the first is dropped; each line is checked as UTF-8 as read_text_file
+// checks a file, before it is returned. Errors name the file: larger than `max_bytes`, a line
+// longer than kMaxLineBytes.
+//   ptnet::LineReader lines("walk.mot");
+//   for (std::string_view line; lines.next(line);) use(lines.number(), line);
+class LineReader {
+ public:
+  explicit LineReader(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
+  LineReader(std::string_view text, std::string source);
+  ~LineReader();
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+  // The next line into `line` (valid until the next call); false at the end.
+  bool next(std::string_view& line);
+  long number() const { return number_; }
+  const std::string& source() const { return source_; }
+
+ private:
+  bool fill();  // reads another block; false at the end of the file
+  std::string source_;
+  std::unique_ptr<InputFile> file_;
+  std::uint64_t max_bytes_ = 0, read_ = 0;
+  std::string buffer_;     // the file's bytes read and not yet returned (at its end)
+  std::string_view text_;  // what is left to split: buffer_'s, or the text given
+  long number_ = 0;
+  bool end_ = false;
+};
 
 // What a file of stat mode `mode` is, for a message: "a folder", "a FIFO",
 // "a socket", "a character device", "a block device", "a regular file".
@@ -92,7 +143,8 @@ void make_folder(const std::string& path);
 
 // The outputs `files` of a run to be written into folder `dir` (which may
 // not exist yet), before the run: `dir` is no file (existing_folder) and
-// each file needs `force` if it exists.
+// each file as check_output_path has it (never a folder, FIFO or device, nor
+// an input of this run; `force` if it exists).
 void check_outputs_in_folder(const std::string& dir, const std::vector<std::string>& files, bool force);
 
 class AtomicFile {
@@ -140,6 +192,12 @@ class CommitGroup {
 // Writes `text` to `path` atomically (see AtomicFile).
 void write_text_file(const std::string& path, const std::string& text, bool force);
 
+// How a numeric table is written: an OpenSim storage file (.mot, .sto) or CSV.
+enum class TableFormat { mot, csv };
+inline constexpr TableFormat kTableFormats[] = {TableFormat::mot, TableFormat::csv};
+TableFormat parse_table_format(const std::string& text);  // "mot|csv"; throws Error
+const char* table_format_name(TableFormat format);         // "mot", "csv": also the extension
+
 // A numeric table, by the extension of `path`: an OpenSim storage file
 // (.mot or .sto: the file's stem, version=1, nRows, nColumns, inDegrees=no,
 // `note` as one header line when not empty, endheader, then tab-separated
@@ -149,6 +207,38 @@ void write_text_file(const std::string& path, const std::string& text, bool forc
 // rows: [N][columns.size()].
 void write_table_file(const std::string& path, const std::vector<std::string>& columns,
                       const std::vector<std::vector<double>>& rows, const std::string& note, bool force);
+
+// A table as write_table_file writes it (and OpenSim writes storage files),
+// read back row by row, never whole: by the extension of `path` as
+// write_table_file has it, an OpenSim storage file (a header ending in
+// "endheader", then a line of column names and one row of numbers per line,
+// tab- or space-separated) or CSV (names, then rows; no quoted fields). Only the values asked for are parsed, so
+// its memory is one line and what the caller keeps. Blank lines are
+// skipped; a row with another number of fields than there are columns is an
+// Error "FILE:LINE: expected 19 values (one per column), found 18".
+//   ptnet::TableReader t("walk_grf.mot");
+//   const int vy = t.column("ground_force_vy");   // -1: none
+//   for (std::vector<double> v; t.next({0, vy}, v);) use(v[0], v[1]);
+class TableReader {
+ public:
+  explicit TableReader(const std::string& path);
+  TableReader(std::string_view text, const std::string& source, TableFormat format);
+  const std::vector<std::string>& columns() const { return columns_; }
+  int column(const std::string& name) const;  // its index, -1 when absent (the first if repeated)
+  // The next row's values of the columns `use` (indices into columns()), in
+  // that order, into `values`: finite numbers, else Error "FILE:LINE:
+  // expected a number in column NAME, found 'abc'"; false after the last row.
+  bool next(const std::vector<int>& use, std::vector<double>& values);
+  long line() const { return lines_.number(); }
+  const std::string& source() const { return lines_.source(); }
+
+ private:
+  void read_names();
+  TableFormat format_;  // first: a name of another format is refused before the file is opened
+  LineReader lines_;
+  std::vector<std::string> columns_;
+  std::vector<std::string_view> fields_;
+};
 
 // The most threads any option may ask for: 4 x the hardware threads (at
 // least 4). More only adds scheduling overhead and memory.

@@ -72,6 +72,10 @@ struct MarkerMap {
 // NAME" optional; unknown landmarks are errors that list the known ones).
 MarkerMap marker_map(const std::string& name_or_path);
 std::vector<std::string> marker_map_names();  // the shipped maps
+// The marker_map of a list's row (a clips or trials CSV) whose files are
+// relative to `folder`: a shipped map's name stays that name; a map file is
+// resolved_path(folder, it) (ptnet/io.hpp), as the list's other files.
+std::string marker_map_in(const std::string& folder, const std::string& name_or_path);
 
 // ------------------------------------------------------- markers -> joints
 

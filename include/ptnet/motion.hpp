@@ -56,8 +56,13 @@ struct Bvh {
 // Reads a BVH file. Errors are one line, naming the file:
 // "walk.bvh:42: expected CHANNELS, found OFFSET".
 Bvh read_bvh(const std::string& path);
-// Atomic write (temporary file + rename); refuses to overwrite unless force.
+// Atomic write (temporary file + rename); refuses to overwrite unless force,
+// and a name that says another format (check_bvh_output).
 void write_bvh(const Bvh& bvh, const std::string& path, bool force);
+// What write_bvh checks of `path`, for before the work: a .bvh name (any
+// case; Error "PATH: expected a .bvh file name: BVH is written") and
+// check_output_path (ptnet/io.hpp).
+void check_bvh_output(const std::string& path, bool force);
 
 // ------------------------------------------------------- units and up axis
 

@@ -47,9 +47,26 @@ struct GaitTrial {
   // a foot that no plate sees in more than a tenth of its loaded frames).
   std::string coverage = "auto";
 };
-// A trials CSV (docs/physics.md): columns trial, markers, plates, sex,
-// height_cm, weight_kg; static, marker_map and coverage optional. Paths
-// relative to `data_dir` ("": the CSV's folder).
+// The columns of a trials CSV, the one list that read_gait_trials reads,
+// `ptnet physics-bench --help` prints and docs/physics.md documents (a test
+// holds the page to it).
+struct GaitTrialColumn {
+  const char* name;
+  bool required;
+};
+inline constexpr GaitTrialColumn kGaitTrialColumns[] = {
+    {"trial", true},     {"markers", true},     {"plates", true},    {"sex", true},        {"height_cm", true},
+    {"weight_kg", true}, {"static", false},     {"marker_map", false}, {"coverage", false}};
+// "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage]"
+std::string gait_trial_columns_text();
+
+// A trials CSV (docs/physics.md; kGaitTrialColumns). Paths (markers, plates,
+// static, and marker_map unless it names a shipped map) are relative to
+// `data_dir` ("": the CSV's folder), as the filesystem resolves them
+// (resolved_path). Checked before any trial runs: each file there and a
+// regular file (InputFile's words for what else it is), each trial name a
+// file name of the report (name_problem, ptnet/strings.hpp) and no two the
+// same.
 std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir);
 
 struct PhysicsBenchOptions {
@@ -96,10 +113,28 @@ struct GaitTrialResult {
 };
 GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions& options);
 
+// What a result's figures rest on, checked before they are reported
+// (physics-bench runs it on every trial before it writes anything). Throws
+// Error (FILE: the trial's plates) naming the trial when nothing can be
+// compared: no plate sample within the markers' times (plates on another
+// clock), a vertical force below zero in most frames (the force on the
+// plates, a common export convention, not the ground reaction: refused, with
+// the hint to negate it, rather than flipped, since a sign that is wrong for
+// another reason, a wrong vertical axis or a plate's calibration, would then
+// give figures silently), no load on the plates, or no frame compared.
+// Returns warnings: the plates covering only part of the trial's frames (the
+// fraction and the times).
+std::vector<std::string> check_gait_result(const GaitTrialResult& result, const PhysicsBenchOptions& options);
+
 // `out_dir`/results.json, index.html (force against time, per trial), and
 // per trial <trial>_sim.mot (the simulator's forces), <trial>_frames.csv
 // (every frame of plates, simulator and naive reference), <trial>_total.svg
 // and <trial>_feet.svg; refuses to overwrite unless `force`.
+// (check_physics_report first; the files appear together at the end, or none).
 void write_physics_report(const std::vector<GaitTrialResult>& results, const std::string& out_dir, bool force);
+// What write_physics_report checks before it writes, for before the work:
+// each trial's name a file name (name_problem), no file written twice, the
+// folder no file and existing outputs only with `force`.
+void check_physics_report(const std::vector<GaitTrial>& trials, const std::string& out_dir, bool force);
 
 }  // namespace ptnet

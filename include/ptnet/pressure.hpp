@@ -68,7 +68,7 @@ struct FrameLoad {
   double x_m = NAN, y_m = NAN;
   double contact_m2 = 0;
 };
-FrameLoad frame_load(const float* frame, const MatSpec& mat, double contact_kpa = 0.5);
+FrameLoad frame_load(const float* frame, const MatSpec& mat, double contact_kpa = kContactKpa);
 
 // Binary R^2 from counts over n cells (the one formula behind eval's
 // binary_r2 and training's validation): with both maps binarised, SS_res =

@@ -232,12 +232,22 @@ struct ForceTable {
   std::vector<double> total_n;                // [T] on and off the mat, every body part
   std::vector<std::array<double, 2>> foot_n;  // [T] [left, right]
   std::vector<std::array<double, 2>> cop_u;   // [T] [left, right]; NaN: foot unloaded
+  // [T] [left, right] where each foot's load acts, on the floor (m): the
+  // point cop_u along the foot's heel-toe line (foot_ends) of the motion's
+  // frame, x and y of its world (z up); (0, 0) when the foot is unloaded.
+  // Empty: not known (written as unloaded).
+  std::vector<std::array<Eigen::Vector2d, 2>> cop_m;
 };
 ForceTable force_table(const std::vector<FrameTrace>& trace, const Motion& motion, const Body& body);
 // Writes the table as an OpenSim storage file (.mot or .sto: time, then
 // total_force_vy, total_force_bw, l_/r_ground_force_vy, l_/r_force_bw,
-// l_/r_cop_u) or as CSV (.csv, the same columns), atomically; refuses to
-// overwrite unless `force`.
+// l_/r_cop_u, then each foot's whole plate group l_/r_ground_force_vx, vz,
+// px, py, pz) or as CSV (.csv, the same columns), atomically; refuses to
+// overwrite unless `force`. The groups are in OpenSim's axes, y up: the
+// force (0, vy, 0) N acting at (px, 0, pz) = (y, 0, x) of cop_m (m; 0 when
+// unloaded), the inverse of the lab-to-world swap of a y-up file, so that
+// the file reads back as two force plates, one a foot (ptnet physics-bench,
+// OpenSim).
 void write_force_table(const ForceTable& table, const std::string& path, bool force);
 
 // simulate() with a given placement (place_copy: the source motion's,

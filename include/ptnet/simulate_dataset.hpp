@@ -147,10 +147,11 @@ struct SimulateDatasetOptions {
   int shard_count = 1;
   // Each sequence's simulated ground reaction (force_table: total and per
   // foot, N, BW, CoP along the foot) as `forces_dir`/<name>.<forces_format>
-  // ("mot": OpenSim storage, or "csv"), written once the dataset is;
-  // "": none. Simulating with forces traces every frame: slower.
+  // (OpenSim storage or CSV), checked before any work (not the dataset's
+  // path, no input replaced) and appearing with the dataset; "": none.
+  // Simulating with forces traces every frame: slower.
   std::string forces_dir;
-  std::string forces_format = "mot";
+  TableFormat forces_format = TableFormat::mot;
   // Counts as work completes: {"load", done, total, "clips"}, then
   // {"simulate", done, total, "sequences"}. Calls are serialised but may come
   // from worker threads.

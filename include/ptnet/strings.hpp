@@ -6,6 +6,8 @@
 //   ptnet::lower(ptnet::trim("  Male "))      // "male"
 //   double v; ptnet::parse_number("1e3", v)  // true, v = 1000
 //   std::int64_t n; ptnet::parse_integer("1e3", n)  // false: digits only
+//   ptnet::name_problem("../x")               // "holds '/'": not a file name
+//   ptnet::utf8_invalid_at("caf\xe9")          // 3: Latin-1, not UTF-8
 #pragma once
 
 #include <cstdint>
@@ -40,6 +42,25 @@ bool parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std:
 // option given twice the same value (compare normalised forms, as the
 // option reads them: lower case, a speed's label). Lists are short.
 std::string first_repeat(const std::vector<std::string>& items);
+// The longest name a user gives that becomes a file name (a trial, a
+// sequence written as NAME.mot): room for a suffix within the 255 bytes of
+// a file name.
+inline constexpr std::size_t kMaxNameBytes = 200;
+// Why `name` cannot be one file name inside an output folder (a trial's,
+// a sequence's NAME.mot), "" when it can: "is empty", "holds '/'", "is '.'
+// or '..'", "holds a control byte", "is not UTF-8", "is longer than 200
+// bytes". The one rule of every user string that becomes a file name
+// (trial names, sequence names, their motion and body ids).
+std::string name_problem(std::string_view name);
+
+// The offset of the first byte of `text` that is not part of valid UTF-8
+// (overlong forms, surrogates and code points above U+10FFFF are not), or
+// std::string::npos when it all is.
+std::size_t utf8_invalid_at(std::string_view text);
+// Every reader of text checks it before using any (read_text_file and
+// LineReader, ptnet/io.hpp: "FILE:LINE: expected UTF-8 text, found byte
+// 0xE9 ...").
+
 // A message as one line (how the CLI and the Python module show an error):
 // line breaks become "; ", other control bytes are escaped (\x1b), trailing
 // blanks and semicolons dropped.

@@ -1,6 +1,7 @@
 """ptnet.simulate equals `ptnet simulate` for the same clip, body and seed;
 motions and bodies as numpy / Python objects."""
 import os
+import pathlib
 import unittest
 
 import h5py
@@ -124,6 +125,19 @@ class SimulateTest(unittest.TestCase):
         self.assertAlmostEqual(np.linalg.norm(hips[0] - hips[1]), 2 * (0.33 * 0.24 + 0.0073), places=9)  # Harrington
         with self.assertRaisesRegex(ValueError, "stand.trc: marker map .plugin-gait. cannot place the markers: it lacks r_asis"):
             ptnet.read_motion(path, marker_map="plugin-gait")
+
+    def test_paths_may_be_pathlike(self):
+        # Before: read_motion(pathlib.Path(...)) raised TypeError (str only).
+        bvh = pathlib.Path(self.bvh)
+        self.assertEqual(len(ptnet.read_motion(bvh)), len(ptnet.read_motion(self.bvh)))
+        self.assertEqual(len(ptnet.read_bvh(bvh)), len(ptnet.read_motion(self.bvh)))
+        bodies = ptnet.read_bodies_csv(pathlib.Path(self.dir) / "bodies.csv")
+        self.assertEqual([b.id for b in bodies], ["b1", "b2"])
+        out = pathlib.Path(self.dir) / "pathlike.bvh"
+        ptnet.read_motion(bvh).write_bvh(out, force=True)
+        self.assertTrue(out.is_file())
+        with self.assertRaisesRegex(ValueError, "expected a .bvh file name"):
+            ptnet.read_motion(bvh).write_bvh(pathlib.Path(self.dir) / "walk.trc")
 
     def test_metrics(self):
         t = np.zeros((2, 80, 28), np.float32)

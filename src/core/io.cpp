@@ -19,6 +19,7 @@
 
 #include "core/io_internal.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;
@@ -164,28 +165,41 @@ void rename_into_place(const std::string& temp, const std::string& path) {
 
 // ------------------------------------------------------------ reading
 
-Error open_error(const std::string& path, int err) {
-  if (err == ENOENT) return Error::in(path, "no such file", ErrorKind::not_found);
-  return Error::in(path, std::string("cannot open: ") + std::strerror(err), ErrorKind::io);
-}
+namespace {
 
-InputFile::InputFile(const std::string& path) : path_(path) {
+// Opens `path` for InputFile: its descriptor, or -1 with what keeps it from
+// being read in `problem` (and its kind).
+int open_regular(const std::string& path, std::uint64_t& size, std::string& problem, ErrorKind& kind) {
   const auto not_regular = [&](mode_t mode) {
-    return S_ISDIR(mode) ? Error::in(path, "is a folder, expected a file")
-                         : Error::in(path, std::string("is ") + file_kind(mode) + ", expected a regular file");
+    kind = ErrorKind::format;  // as Error::in has it
+    problem = S_ISDIR(mode) ? "is a folder, expected a file"
+                            : std::string("is ") + file_kind(mode) + ", expected a regular file";
+    return -1;
   };
   struct stat st {};
-  fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);  // a FIFO opens at once; a socket does not
-  if (fd_ < 0) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);  // a FIFO opens at once; a socket does not
+  if (fd < 0) {
     const int err = errno;
-    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw not_regular(st.st_mode);
-    throw open_error(path, err);
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return not_regular(st.st_mode);
+    kind = err == ENOENT ? ErrorKind::not_found : ErrorKind::io;
+    problem = err == ENOENT ? "no such file" : std::string("cannot open: ") + std::strerror(err);
+    return -1;
   }
-  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd_);
-    throw not_regular(st.st_mode);
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return not_regular(st.st_mode);
   }
-  size_ = std::uint64_t(st.st_size);
+  size = std::uint64_t(st.st_size);
+  return fd;
+}
+
+}  // namespace
+
+InputFile::InputFile(const std::string& path) : path_(path) {
+  std::string problem;
+  ErrorKind kind = ErrorKind::format;
+  fd_ = open_regular(path, size_, problem, kind);
+  if (fd_ < 0) throw Error::in(path, problem, kind);
 }
 
 InputFile::~InputFile() { ::close(fd_); }
@@ -202,7 +216,7 @@ std::size_t InputFile::read(char* out, std::size_t n) {
   return got;
 }
 
-std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
+std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
   InputFile in(path);
   if (in.size() > max_bytes)
     throw Error::in(path, bytes_text(in.size()) + ", more than the " + bytes_text(max_bytes) +
@@ -217,6 +231,26 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
       throw Error::in(path, "more than the " + bytes_text(max_bytes) + " this kind of file may have (it grew while read)");
   }
   return text;
+}
+
+std::string read_text_file(const std::string& path, std::uint64_t max_bytes) {
+  std::string text = read_file_bytes(path, max_bytes);
+  check_utf8(text, path);
+  return text;
+}
+
+std::string input_file_problem(const std::string& path, ErrorKind* kind) {
+  std::uint64_t size = 0;
+  std::string problem;
+  ErrorKind k = ErrorKind::format;
+  const int fd = open_regular(path, size, problem, k);
+  if (fd >= 0) ::close(fd);
+  if (kind) *kind = k;
+  return problem;
+}
+
+std::string resolved_path(const std::string& folder, const std::string& file) {
+  return file.empty() || fs::path(file).is_absolute() ? file : (fs::path(folder) / file).string();
 }
 
 void note_input(const std::string& path) {
@@ -280,7 +314,12 @@ void make_folder(const std::string& path) {
 
 void check_outputs_in_folder(const std::string& dir, const std::vector<std::string>& files, bool force) {
   existing_folder(dir);
-  for (const std::string& f : files) check_overwrite((fs::path(dir) / f).string(), force);
+  for (const std::string& f : files) {
+    const std::string path = (fs::path(dir) / f).string();
+    check_regular(path);
+    check_overwrite(path, force);
+    check_not_input(path);
+  }
 }
 
 AtomicFile::AtomicFile(std::string path, bool force) : path_(std::move(path)) {

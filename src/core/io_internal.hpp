@@ -5,14 +5,18 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "ptnet/error.hpp"
 
 namespace ptnet {
 
-// The error of an input that cannot be opened, from its errno: "no such
-// file" (ErrorKind::not_found) or "cannot open: REASON" (ErrorKind::io).
-Error open_error(const std::string& path, int err);
+// Throws Error "SOURCE:LINE: expected UTF-8 text, found byte 0xE9 (...)"
+// (kind format) unless `text` is UTF-8 (utf8_invalid_at, strings.hpp; a
+// byte-order mark is); `first_line` numbers text's first line. The one check
+// of every reader of text: read_text_file and LineReader call it before
+// their caller sees any of the text. Defined in strings.cpp.
+void check_utf8(std::string_view text, const std::string& source, long first_line = 1);
 
 // Bytes of memory available to this process now (MemAvailable), or 0 if unknown.
 std::uint64_t available_memory_bytes();

@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/io_internal.hpp"
+#include "ptnet/error.hpp"
+
 namespace ptnet {
 namespace {
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
@@ -109,6 +112,58 @@ std::string one_line(std::string_view text) {
   }
   while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
   return out;
+}
+
+std::string name_problem(std::string_view name) {
+  if (name.empty()) return "is empty";
+  if (name == "." || name == "..") return "is '.' or '..'";
+  if (name.find('/') != std::string_view::npos) return "holds '/'";
+  for (unsigned char c : name)
+    if (c < 0x20 || c == 0x7f) return "holds a control byte";
+  if (utf8_invalid_at(name) != std::string::npos) return "is not UTF-8";
+  if (name.size() > kMaxNameBytes) return "is longer than " + std::to_string(kMaxNameBytes) + " bytes";
+  return "";
+}
+
+std::size_t utf8_invalid_at(std::string_view text) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  std::size_t i = 0;
+  while (i < n) {
+    const unsigned char c = s[i];
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    // The lead byte gives the length and the range of the second byte
+    // (which excludes overlong forms, surrogates and values past U+10FFFF).
+    int len = 0;
+    unsigned char lo = 0x80, hi = 0xbf;
+    if (c >= 0xc2 && c <= 0xdf) len = 2;
+    else if (c == 0xe0) len = 3, lo = 0xa0;
+    else if (c == 0xed) len = 3, hi = 0x9f;
+    else if (c >= 0xe1 && c <= 0xef) len = 3;
+    else if (c == 0xf0) len = 4, lo = 0x90;
+    else if (c >= 0xf1 && c <= 0xf3) len = 4;
+    else if (c == 0xf4) len = 4, hi = 0x8f;
+    else return i;
+    if (i + std::size_t(len) > n || s[i + 1] < lo || s[i + 1] > hi) return i;
+    for (int k = 2; k < len; ++k)
+      if (s[i + std::size_t(k)] < 0x80 || s[i + std::size_t(k)] > 0xbf) return i;
+    i += std::size_t(len);
+  }
+  return std::string::npos;
+}
+
+void check_utf8(std::string_view text, const std::string& source, long first_line) {
+  const std::size_t at = utf8_invalid_at(text);
+  if (at == std::string::npos) return;
+  long line = first_line;
+  for (std::size_t i = 0; i < at; ++i) line += text[i] == '\n';
+  char byte[8];
+  std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[at]));
+  throw Error::at(source, line, "UTF-8 text",
+                  std::string("byte ") + byte + " (Latin-1 or Windows-1252? save the file as UTF-8)");
 }
 
 std::string first_repeat(const std::vector<std::string>& items) {

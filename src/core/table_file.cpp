@@ -1,4 +1,6 @@
-// Numeric tables as OpenSim storage files or CSV (ptnet/io.hpp).
+// Numeric tables as OpenSim storage files or CSV (ptnet/io.hpp): the writer
+// and its reader.
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -9,16 +11,34 @@
 
 namespace ptnet {
 
+TableFormat parse_table_format(const std::string& text) {
+  for (TableFormat f : kTableFormats)
+    if (text == table_format_name(f)) return f;
+  throw Error("table format: expected mot or csv, found " + escaped(text));
+}
+
+const char* table_format_name(TableFormat format) { return format == TableFormat::csv ? "csv" : "mot"; }
+
+namespace {
+
+// The format a file name asks for: .mot or .sto (OpenSim storage), .csv;
+// Error "PATH: expected a .mot, .sto or .csv file name" for another.
+TableFormat table_format_of(const std::string& path) {
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (ext == ".mot" || ext == ".sto") return TableFormat::mot;
+  if (ext == ".csv") return TableFormat::csv;
+  throw Error::in(path, "expected a .mot, .sto or .csv file name");
+}
+
+}  // namespace
+
 void write_table_file(const std::string& path, const std::vector<std::string>& columns,
                       const std::vector<std::vector<double>>& rows, const std::string& note, bool force) {
-  const std::string ext = lower(std::filesystem::path(path).extension().string());
-  if (ext != ".mot" && ext != ".sto" && ext != ".csv")
-    throw Error::in(path, "expected a .mot, .sto or .csv file name");
+  const bool csv = table_format_of(path) == TableFormat::csv;
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (rows[i].size() != columns.size())
       throw Error::in(path, "row " + std::to_string(i) + ": expected " + std::to_string(columns.size()) +
                                 " values, found " + std::to_string(rows[i].size()));
-  const bool csv = ext == ".csv";
   const char sep = csv ? ',' : '\t';
   std::ostringstream o;
   o << std::setprecision(9);
@@ -34,6 +54,89 @@ void write_table_file(const std::string& path, const std::vector<std::string>& c
     o << "\n";
   }
   write_text_file(path, o.str(), force);
+}
+
+// ------------------------------------------------------------ reading
+
+namespace {
+
+// The fields of a line: between runs of blanks (storage) or commas (CSV),
+// each trimmed of blanks.
+void split_fields(std::string_view line, TableFormat format, std::vector<std::string_view>& out) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  out.clear();
+  std::size_t i = 0;
+  if (format == TableFormat::mot) {
+    while (i < line.size()) {
+      while (i < line.size() && blank(line[i])) ++i;
+      const std::size_t start = i;
+      while (i < line.size() && !blank(line[i])) ++i;
+      if (i > start) out.push_back(line.substr(start, i - start));
+    }
+    return;
+  }
+  for (std::size_t start = 0;; start = i + 1) {
+    i = std::min(line.find(',', start), line.size());
+    std::size_t b = start, e = i;
+    while (b < e && blank(line[b])) ++b;
+    while (e > b && blank(line[e - 1])) --e;
+    out.push_back(line.substr(b, e - b));
+    if (i == line.size()) return;
+  }
+}
+
+bool blank_line(std::string_view line) {
+  return line.find_first_not_of(" \t\r") == std::string_view::npos;
+}
+
+}  // namespace
+
+TableReader::TableReader(const std::string& path) : format_(table_format_of(path)), lines_(path) { read_names(); }
+
+TableReader::TableReader(std::string_view text, const std::string& source, TableFormat format)
+    : format_(format), lines_(text, source) {
+  read_names();
+}
+
+void TableReader::read_names() {
+  std::string_view line;
+  if (format_ == TableFormat::mot) {
+    bool header = true;
+    while (header && lines_.next(line)) header = trim(line) != "endheader";
+    if (header) throw Error::in(source(), "expected an OpenSim storage header ending in 'endheader', found none");
+  }
+  while (lines_.next(line))
+    if (!blank_line(line)) {
+      split_fields(line, format_, fields_);
+      for (std::string_view f : fields_) columns_.emplace_back(f);
+      return;
+    }
+  throw Error::in(source(), std::string("no column names") +
+                                (format_ == TableFormat::mot ? " after 'endheader'" : ""));
+}
+
+int TableReader::column(const std::string& name) const {
+  for (std::size_t c = 0; c < columns_.size(); ++c)
+    if (columns_[c] == name) return int(c);
+  return -1;
+}
+
+bool TableReader::next(const std::vector<int>& use, std::vector<double>& values) {
+  std::string_view text;
+  do {
+    if (!lines_.next(text)) return false;
+  } while (blank_line(text));
+  split_fields(text, format_, fields_);
+  if (fields_.size() != columns_.size())
+    throw Error::at(source(), line(), std::to_string(columns_.size()) + " values (one per column)",
+                    std::to_string(fields_.size()));
+  values.resize(use.size());
+  for (std::size_t k = 0; k < use.size(); ++k) {
+    const std::size_t c = std::size_t(use[k]);
+    if (!parse_number(fields_.at(c), values[k]))
+      throw Error::at(source(), line(), "a number in column " + escaped(columns_[c], 60, false), escaped(fields_[c]));
+  }
+  return true;
 }
 
 }  // namespace ptnet

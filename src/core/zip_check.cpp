@@ -152,7 +152,7 @@ int verify_zip(std::string_view bytes, const std::string& name) {
 }
 
 int verify_zip_file(const std::string& path) {
-  return verify_zip(read_text_file(path, kMaxArchiveBytes), path);
+  return verify_zip(read_file_bytes(path, kMaxArchiveBytes), path);
 }
 
 }  // namespace ptnet

@@ -59,7 +59,7 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
     r.line = number;
     const std::string& file = get(c_file);
     if (file.empty()) throw Error::at(path, number, "a file name", "an empty field");
-    r.file = (fs::path(file).is_absolute() ? fs::path(file) : folder / file).lexically_normal().string();
+    r.file = resolved_path(folder.string(), file);
     r.subject = get(c_subject);
     if (r.subject.empty()) throw Error::at(path, number, "a subject", "an empty field");
     try {
@@ -88,20 +88,12 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
     r.activity = lower(get(c_activity));
     r.up = lower(get(c_up));
     if (!r.up.empty() && r.up != "y" && r.up != "z") throw Error::at(path, number, "up y or z", escaped(get(c_up)));
-    auto resolved = [&](const std::string& f) {
-      return f.empty() || fs::path(f).is_absolute() ? f : (folder / f).lexically_normal().string();
-    };
-    r.static_markers = resolved(get(c_static));
-    const std::vector<std::string> shipped = marker_map_names();
-    r.marker_map = get(c_map);
-    if (std::find(shipped.begin(), shipped.end(), r.marker_map) == shipped.end()) r.marker_map = resolved(r.marker_map);
-    struct stat st {};
-    if (::stat(r.file.c_str(), &st) != 0)
-      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " not found",
-                  ErrorKind::not_found);
-    if (!S_ISREG(st.st_mode))  // a FIFO would block the run, a device never end
-      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + " is " +
-                  file_kind(st.st_mode) + ", expected a regular file");
+    r.static_markers = resolved_path(folder.string(), get(c_static));
+    r.marker_map = marker_map_in(folder.string(), get(c_map));
+    ErrorKind kind{};  // a FIFO would block the run, a device never end
+    if (const std::string problem = input_file_problem(r.file, &kind); !problem.empty())
+      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + ": " + problem, kind);
+    note_input(r.file);  // no output of the run may replace it: checked before the work
     rows.push_back(r);
   }
   if (rows.empty()) throw Error::in(path, "no clips listed after the header");
@@ -139,7 +131,7 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
       for (auto it = fs::recursive_directory_iterator(in, ec); !ec && it != fs::recursive_directory_iterator();
            it.increment(ec))
         // Not only regular files: a FIFO or device named x.bvh is refused when read, not skipped.
-        if (!it->is_directory(ec) && is_motion_file(it->path())) found.push_back(it->path().lexically_normal().string());
+        if (!it->is_directory(ec) && is_motion_file(it->path())) found.push_back(it->path().string());
       if (ec) throw Error::in(in, "cannot list folder: " + ec.message(), ErrorKind::io);
       if (found.empty()) throw Error::in(in, "folder holds no .bvh or .trc files");
       std::sort(found.begin(), found.end());

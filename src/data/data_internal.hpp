@@ -7,17 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "core/rate.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/simulate_dataset.hpp"
 
 namespace ptnet {
 
-// True when a sequence at `fps` belongs in a dataset at `dataset_fps`: the
-// same rate up to rounding (1e-9 relative). DatasetWriter::add requires it;
-// simulate_dataset checks every clip before simulating any.
-inline bool same_fps(double fps, double dataset_fps) {
-  return std::abs(fps - dataset_fps) <= 1e-9 * dataset_fps;
-}
+// A sequence at `fps` belongs in a dataset at `dataset_fps` when
+// same_rate(fps, dataset_fps) (core/rate.hpp). DatasetWriter::add requires
+// it; simulate_dataset checks every clip before simulating any.
 
 // read_clips_csv on CSV text; files are resolved against `path`'s folder.
 std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string& path);

@@ -12,6 +12,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace fs = std::filesystem;
@@ -164,6 +165,8 @@ void Dataset::Impl::read_bodies() {
   for (size_t i = 0; i < n; ++i) {
     const std::string where = "/bodies row " + std::to_string(i) + " (" + escaped(ids[i]) + ")";
     if (ids[i].empty()) throw Error::in(path, "/bodies row " + std::to_string(i) + ": empty id");
+    if (utf8_invalid_at(ids[i]) != std::string::npos || utf8_invalid_at(roles[i]) != std::string::npos)
+      throw Error::in(path, where + ": id or role is not UTF-8");
     if (sex[i] != 0 && sex[i] != 1)
       throw Error::in(path, where + ": sex " + number_text(sex[i]) + ", expected 0 (female) or 1 (male)");
     const BodySpec b{ids[i], sex[i] == 1 ? Sex::male : Sex::female, height[i], weight[i], roles[i]};
@@ -184,6 +187,7 @@ void Dataset::Impl::read_sequences() {
     SequenceMeta m;
     m.name = group.getObjnameByIdx(i);
     const std::string where = "sequence " + escaped(m.name, 80);
+    if (utf8_invalid_at(m.name) != std::string::npos) throw Error::in(path, where + ": the name is not UTF-8");
     if (group.childObjType(m.name) != H5O_TYPE_DATASET)
       throw Error::in(path, "/sequences/" + m.name + " is not a dataset");
     H5::DataSet ds = group.openDataSet(m.name);

@@ -11,6 +11,7 @@
 #include "data/data_internal.hpp"
 #include "data/deflate_chunks.hpp"
 #include "data/h5_util.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
@@ -74,7 +75,7 @@ void check_frames(const std::string& path, const std::string& where, const Datas
     throw Error::in(path, where + ": mat " + std::to_string(seq.mat.rows) + " x " +
                               std::to_string(seq.mat.cols) + " differs from the dataset's " +
                               std::to_string(mat.rows) + " x " + std::to_string(mat.cols));
-  if (!same_fps(seq.fps, info.fps))
+  if (!same_rate(seq.fps, info.fps))
     throw Error::in(path, where + ": fps " + precise_text(seq.fps) + " differs from the dataset's " +
                               precise_text(info.fps));
   const int frames = seq.frames();
@@ -176,9 +177,11 @@ void DatasetWriter::add(const SequenceMeta& meta, const PressureSequence& seq) {
   const std::string& path = impl_->path();
   if (impl_->committed) throw Error::in(path, "add() after commit()");
   const std::string where = "sequence '" + meta.name + "'";
-  if (meta.name.empty() || meta.name.find('/') != std::string::npos || meta.name == "." ||
-      meta.name == "..")
-    throw Error::in(path, "invalid sequence name '" + meta.name + "' (empty or contains '/')");
+  if (const std::string problem = name_problem(meta.name); !problem.empty())
+    throw Error::in(path, "invalid sequence name " + escaped(meta.name) + ": it " + problem);
+  for (const std::string* text : {&meta.body_id, &meta.motion_id, &meta.performer, &meta.category, &meta.source})
+    if (utf8_invalid_at(*text) != std::string::npos)  // HDF5 declares the attributes UTF-8
+      throw Error::in(path, where + ": " + escaped(*text, 80) + " is not UTF-8");
   if (impl_->frames.count(meta.name)) throw Error::in(path, where + " added twice");
   if (!impl_->body_ids.count(meta.body_id))
     throw Error::in(path, where + ": body_id '" + meta.body_id + "' not in the bodies table");

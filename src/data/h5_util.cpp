@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ptnet/error.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet::h5 {
 
@@ -162,6 +163,8 @@ std::string read_string_attr(const H5::H5Object& obj, const std::string& name,
   std::string value;
   a.read(type, value);
   while (!value.empty() && value.back() == '\0') value.pop_back();  // fixed-length padding
+  if (utf8_invalid_at(value) != std::string::npos)  // what every reader of text refuses (check_utf8)
+    throw Error::in(file, where + ": attribute '" + name + "' is not UTF-8: " + escaped(value, 80));
   return value;
 }
 

@@ -13,19 +13,18 @@
 namespace ptnet {
 
 std::vector<std::string> write_mat_forces(const Dataset& dataset, const std::vector<std::string>& names,
-                                          const std::string& dir, const std::string& format, bool force,
+                                          const std::string& dir, TableFormat format, bool force,
                                           double contact_kpa) {
-  if (format != "mot" && format != "csv")
-    throw Error(field_text("format") + ": expected mot or csv, found " + escaped(format));
-  if (!(contact_kpa >= 0) || !std::isfinite(contact_kpa))
-    throw Error(field_text("contact_kpa") + ": expected a threshold >= 0 kPa, found " + number_text(contact_kpa));
+  check_range("contact_kpa", contact_kpa, kPressureRangeKpa);
   std::vector<std::string> chosen = names;
   if (chosen.empty())
     for (const auto& s : dataset.sequences()) chosen.push_back(s.name);
   std::vector<std::string> files;
   for (const auto& name : chosen) {
     dataset.sequence(name);  // an Error naming the dataset if absent
-    files.push_back(name + "." + format);
+    if (const std::string problem = name_problem(name); !problem.empty())
+      throw Error("sequence " + escaped(name) + " " + problem + ": it cannot name a file");
+    files.push_back(name + "." + table_format_name(format));
   }
   if (!first_repeat(files).empty()) throw Error("sequences: " + escaped(first_repeat(files)) + " given twice");
   check_outputs_in_folder(dir, files, force);

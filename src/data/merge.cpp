@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "core/rate.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
@@ -114,7 +115,7 @@ int merge_datasets(const std::vector<std::string>& inputs, const std::string& ou
       return Error::in(inputs[i], what + " differs from " + inputs[0] + "'s: not parts of one dataset");
     };
     if (!(d.info().mat == first.info().mat)) throw differs("the mat");
-    if (d.info().fps != first.info().fps) throw differs("the frame rate");
+    if (!same_rate(d.info().fps, first.info().fps)) throw differs("the frame rate");
     if (d.info().generator != first.info().generator) throw differs("the generator");
     if (c != config) throw differs("the config");
     if (d.bodies().size() != first.bodies().size() ||

@@ -21,8 +21,10 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
+namespace fs = std::filesystem;
 namespace {
 
 std::string default_config(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
@@ -54,13 +56,28 @@ constexpr std::uint64_t kMaxSequences = 10000000;  // sequences of one dataset
 
 // ---- the phases of run(), in order
 
+// A clip's text that the dataset stores (its motion id names sequences and
+// force files; the rest are attributes HDF5 declares UTF-8), checked before
+// any work: the ids by name_problem, the attributes as UTF-8.
+void check_clip_text(const ClipSource& c) {
+  if (const std::string problem = name_problem(c.meta.motion_id); !problem.empty())
+    throw Error::in(c.meta.source, "motion id " + escaped(c.meta.motion_id) + " " + problem +
+                                       ": it names the clip's sequences (and force files)");
+  for (const std::string* text : {&c.meta.performer, &c.meta.category, &c.meta.source})
+    if (utf8_invalid_at(*text) != std::string::npos)
+      throw Error::in(c.meta.source, escaped(*text, 80) + " is not UTF-8, which the dataset's attributes are: "
+                                     "rename the file (or give the clips CSV as UTF-8)");
+}
+
 // Every sequence name once, known before any work: each clip's motion id
 // and each body's id once (a clip a_x0.8.bvh beside a.bvh played at 0.8),
-// and no "<motion_id>__<body_id>" made twice by ids that hold "__".
+// each a name (name_problem), and no "<motion_id>__<body_id>" made twice
+// by ids that hold "__".
 void check_names(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies) {
   std::map<std::string, const ClipSource*> ids;
   bool split = false;  // an id holding "__": names may collide
   for (const ClipSource& c : clips) {
+    check_clip_text(c);
     const auto [it, fresh] = ids.emplace(c.meta.motion_id, &c);
     if (!fresh)
       throw Error::in(c.meta.source, "motion id " + escaped(c.meta.motion_id) + " is also that of " +
@@ -70,6 +87,8 @@ void check_names(const std::vector<ClipSource>& clips, const std::vector<BodySpe
   std::set<std::string> body_ids;
   for (const BodySpec& b : bodies) {
     if (!body_ids.insert(b.id).second) throw Error("simulate: body id " + escaped(b.id) + " given twice");
+    if (const std::string problem = name_problem(b.id); !problem.empty())
+      throw Error("simulate: body id " + escaped(b.id) + " " + problem + ": it names the body's sequences");
     split = split || b.id.find("__") != std::string::npos;
   }
   if (!split) return;
@@ -81,6 +100,38 @@ void check_names(const std::vector<ClipSource>& clips, const std::vector<BodySpe
                                            " made twice (motion and body ids holding \"__\")");
 }
 
+// Jobs [begin, end) of `jobs` in shard K of N (SimulateDatasetOptions::shard_index).
+std::pair<int, int> shard_range(int jobs, int k, int n) {
+  return {int(std::int64_t(jobs) * k / n), int(std::int64_t(jobs) * (k + 1) / n)};
+}
+
+// The force files of the jobs [begin, end): <motion_id>__<body_id>.<format>.
+std::vector<std::string> force_files(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
+                                     const SimulateDatasetOptions& o, int begin, int end) {
+  std::vector<std::string> out;
+  const int nb = int(bodies.size());
+  for (int j = begin; j < end; ++j)
+    out.push_back(clips[std::size_t(j / nb)].meta.motion_id + "__" + bodies[std::size_t(j % nb)].id + "." +
+                  table_format_name(o.forces_format));
+  return out;
+}
+
+// The forces folder, before any work: not the dataset's own path, and each
+// force file one check_output_path allows (never an input of the run).
+void check_forces_dir(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
+                      const std::string& out_path, const SimulateDatasetOptions& o) {
+  if (o.forces_dir.empty()) return;
+  std::error_code ec;
+  if (fs::weakly_canonical(fs::absolute(o.forces_dir), ec) == fs::weakly_canonical(fs::absolute(out_path), ec))
+    throw Error(field_text("forces_dir") + ": " + o.forces_dir + " is the dataset's own path (" + out_path +
+                "): give the force files a folder of their own");
+  const int jobs = int(clips.size() * bodies.size());
+  const auto [begin, end] = o.shard_count > 1 && o.shard_index >= 0 && o.shard_index < o.shard_count
+                                ? shard_range(jobs, o.shard_index, o.shard_count)
+                                : std::pair<int, int>{0, jobs};
+  check_outputs_in_folder(o.forces_dir, force_files(clips, bodies, o, begin, end), o.force);
+}
+
 // Threads to use; throws Error for impossible options, and for an output
 // that may not be written, before any work.
 int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies, const std::string& out_path,
@@ -90,6 +141,7 @@ int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>&
   check_range("fps", options.fps, kFpsRange);
   check_names(clips, bodies);
   check_output_path(out_path, options.force);  // before any work
+  check_forces_dir(clips, bodies, out_path, options);
   if (options.threads < 0 || options.threads > max_threads())
     throw Error("simulate: threads must be in 0-" + std::to_string(max_threads()) + ", found " +
                 std::to_string(options.threads));
@@ -111,7 +163,7 @@ void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptio
   parallel_for(nc, threads, [&](int i) {
     const ClipSource& clip = clips[std::size_t(i)];
     motions[std::size_t(i)] = load_clip(clip, options.fps);
-    if (!same_fps(motions[std::size_t(i)].fps, options.fps))
+    if (!same_rate(motions[std::size_t(i)].fps, options.fps))
       throw Error::in(clip.path.empty() ? clip.meta.source : clip.path,
                       "plays at " + precise_text(motions[std::size_t(i)].fps) + " fps, not at the dataset's " +
                           precise_text(options.fps));
@@ -257,14 +309,14 @@ std::string clips_digest(const std::vector<ClipSource>& clips) {
       j["procedural"] = {category_name(g.category), g.performer, g.take, g.seconds, g.height_cm, g.seed};
     } else {
       const MotionOptions& m = c.motion;
-      j["bvh_crc32"] = crc32(read_text_file(c.path));
+      j["bvh_crc32"] = crc32(read_file_bytes(c.path));
       j["read"] = {units_name(m.units), m.metres_per_unit, m.up == UpAxis::z ? "z" : "y", m.keep_tpose};
-      if (!m.static_markers.empty()) j["static_crc32"] = crc32(read_text_file(m.static_markers));
+      if (!m.static_markers.empty()) j["static_crc32"] = crc32(read_file_bytes(m.static_markers));
       if (!m.marker_map.empty()) {  // a shipped map's name, or a map file's bytes
         const auto shipped = marker_map_names();
         j["marker_map"] = std::find(shipped.begin(), shipped.end(), m.marker_map) != shipped.end()
                               ? nlohmann::ordered_json(m.marker_map)
-                              : nlohmann::ordered_json(crc32(read_text_file(m.marker_map)));
+                              : nlohmann::ordered_json(crc32(read_file_bytes(m.marker_map)));
       }
     }
     all.push_back(std::move(j));
@@ -292,7 +344,7 @@ std::pair<int, int> shard_jobs(int jobs, const std::vector<ClipSource>& clips, c
   j["shard"] = std::to_string(k) + "/" + std::to_string(n);
   j["run"] = {{"clips", clips_digest(clips)}, {"sequences", jobs}};
   config_json = j.dump();
-  return {int(std::int64_t(jobs) * k / n), int(std::int64_t(jobs) * (k + 1) / n)};
+  return shard_range(jobs, k, n);
 }
 
 SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
@@ -317,22 +369,19 @@ SimulateDatasetSummary run(const std::vector<ClipSource>& clips, const std::vect
   info.compression = options.compression;
   info.config_json = options.config_json.empty() ? default_config(clips, bodies, options) : options.config_json;
   const auto [begin, end] = shard_jobs(int(metas.size()), clips, options, out_path, info.config_json);
-  std::vector<std::string> force_files;
-  if (!options.forces_dir.empty()) {
-    if (options.forces_format != "mot" && options.forces_format != "csv")
-      throw Error(field_text("forces_format") + ": expected mot or csv, found " + escaped(options.forces_format));
-    for (int j = begin; j < end; ++j) force_files.push_back(metas[std::size_t(j)].name + "." + options.forces_format);
-    check_outputs_in_folder(options.forces_dir, force_files, options.force);
-  }
+  const std::vector<std::string> files =
+      options.forces_dir.empty() ? std::vector<std::string>() : force_files(clips, bodies, options, begin, end);
+  CommitGroup outputs;  // the dataset and its force files appear together, or none
   DatasetWriter writer(out_path, info, bodies, options.force);
   std::vector<ForceTable> forces;
   simulate_chunks(motions, places, bodies, built, metas, options, threads, begin, end, writer, summary, forces);
   writer.commit();
-  if (!force_files.empty()) {
+  if (!files.empty()) {
     make_folder(options.forces_dir);
-    for (std::size_t k = 0; k < force_files.size(); ++k)
-      write_force_table(forces[k], (std::filesystem::path(options.forces_dir) / force_files[k]).string(), options.force);
+    for (std::size_t k = 0; k < files.size(); ++k)
+      write_force_table(forces[k], (fs::path(options.forces_dir) / files[k]).string(), options.force);
   }
+  outputs.commit();
   summary.sequences = end - begin;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/rate.hpp"
 #include "model/model_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
@@ -76,7 +77,7 @@ PressureSequence Transfer::run(const PressureSequence& src, const BodySpec& sour
     throw Error::in(d.path, "model is built for a " + std::to_string(h) + " x " + std::to_string(w) +
                                 " mat, the sequence has " + std::to_string(src.mat.rows) + " x " +
                                 std::to_string(src.mat.cols));
-  if (std::abs(src.fps - d.fps) > 1e-6 * d.fps)
+  if (!same_rate(src.fps, d.fps))
     throw Error::in(d.path, "model is trained at " + number_text(d.fps) +
                                 " fps, the sequence is at " + number_text(src.fps) +
                                 " fps (simulate the data again with " + field_text("fps") + " " +

@@ -4,6 +4,7 @@
 // round-trip promise for any unit from mm to m.
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/motion.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
@@ -147,7 +149,14 @@ std::string format_bvh(const Bvh& bvh) {
   return std::move(w.out);
 }
 
+void check_bvh_output(const std::string& path, bool force) {
+  if (lower(std::filesystem::path(path).extension().string()) != ".bvh")
+    throw Error::in(path, "expected a .bvh file name: BVH is written");
+  check_output_path(path, force);
+}
+
 void write_bvh(const Bvh& bvh, const std::string& path, bool force) {
+  check_bvh_output(path, force);
   write_text_file(path, format_bvh(bvh), force);
 }
 

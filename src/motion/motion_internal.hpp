@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/rate.hpp"
 #include "ptnet/motion.hpp"
 
 namespace ptnet {
@@ -77,10 +78,9 @@ void ground(Motion& motion);
 // Throws Error unless options.fps is a rate a motion may be read at: a
 // finite number <= 0 (the file's own) or in kReadFpsRange.
 void check_read_fps(const MotionOptions& options);
-// True when a file recorded at `file_fps` is read as it is for `fps`: the
-// same rate, its header's number rounded to a few digits (1e-4 relative;
-// a BVH's Frame Time 0.016667 is 60 fps). The motion is then at `fps`.
-inline bool same_rate(double file_fps, double fps) { return std::abs(file_fps - fps) <= 1e-4 * fps; }
+// A file recorded at `file_fps` is read as it is for `fps` when
+// same_rate(file_fps, fps) (core/rate.hpp); the motion is then at `fps`.
+using ptnet::same_rate;
 
 // The motion at `fps`, each joint interpolated linearly between the frames
 // either side (positions of a marker recording, not rotations).

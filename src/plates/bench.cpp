@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "core/anthropometry.hpp"
 #include "core/csv.hpp"
 #include "plates_internal.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
 #include "ptnet/markers.hpp"
 #include "ptnet/strings.hpp"
 
@@ -21,36 +23,65 @@ PhysicsBenchOptions::PhysicsBenchOptions() {
   sim.sensor = ideal_sensor();
 }
 
+std::string gait_trial_columns_text() {
+  std::string required, optional;
+  for (const GaitTrialColumn& c : kGaitTrialColumns) (c.required ? required : optional) += std::string(",") + c.name;
+  return required.substr(1) + (optional.empty() ? "" : "[" + optional + "]");
+}
+
+namespace {
+
+// A file named in a trials CSV's row: resolved against `base` and checked as
+// InputFile will open it (absent, a folder, a FIFO: said at its row).
+std::string trial_file(const std::string& csv, long line, const char* column, const std::string& base,
+                       const std::string& name, bool required) {
+  if (required && name.empty()) throw Error::at(csv, line, std::string("a file in column ") + column, "an empty field");
+  const std::string path = resolved_path(base, name);
+  ErrorKind kind{};
+  if (const std::string problem = path.empty() ? "" : input_file_problem(path, &kind); !problem.empty())
+    throw Error(csv + ":" + std::to_string(line) + ": " + column + " " + escaped(name) + ": " + problem, kind);
+  if (!path.empty()) note_input(path);  // no output of the bench may replace it: checked before the work
+  return path;
+}
+
+// Each trial's name is a file name of the report (TRIAL_sim.mot, ...) and
+// names one trial only: checked before any trial runs.
+void check_trial_name(const std::string& csv, long line, const std::string& name,
+                      std::map<std::string, long>& seen) {
+  if (const std::string problem = name_problem(name); !problem.empty())
+    throw Error::at(csv, line, "a trial name that is a file name (it names the trial's outputs)",
+                    escaped(name) + ", which " + problem);
+  const auto [it, fresh] = seen.emplace(name, line);
+  if (!fresh)
+    throw Error::at(csv, line, "a trial name of its own", escaped(name) + ", the name of line " +
+                                                          std::to_string(it->second) + "'s trial too");
+}
+
+}  // namespace
+
 std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir) {
   const CsvTable t = read_csv(csv);
-  const std::string columns = "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage]";
-  const int c_trial = t.required("trial", columns), c_markers = t.required("markers", columns),
-            c_plates = t.required("plates", columns), c_sex = t.required("sex", columns),
-            c_height = t.required("height_cm", columns), c_weight = t.required("weight_kg", columns),
-            c_static = t.column("static"), c_map = t.column("marker_map"), c_cover = t.column("coverage");
-  const fs::path base = data_dir.empty() ? fs::path(csv).parent_path() : fs::path(data_dir);
-  auto path = [&](const std::string& f) {
-    return f.empty() || fs::path(f).is_absolute() ? f : (base / f).lexically_normal().string();
-  };
+  const std::string columns = gait_trial_columns_text();
+  std::map<std::string, int> c;
+  for (const GaitTrialColumn& col : kGaitTrialColumns)
+    c[col.name] = col.required ? t.required(col.name, columns) : t.column(col.name);
+  const std::string base = data_dir.empty() ? fs::path(csv).parent_path().string() : data_dir;
   std::vector<GaitTrial> out;
+  std::map<std::string, long> names;
   for (const CsvRow& row : t.rows) {
-    auto get = [&](int c) -> const std::string& { return CsvTable::field(row, c); };
+    auto get = [&](const char* column) -> const std::string& { return CsvTable::field(row, c.at(column)); };
     GaitTrial g;
-    g.name = get(c_trial);
-    if (g.name.empty()) throw Error::at(csv, row.line, "a trial name", "an empty field");
-    g.markers = path(get(c_markers));
-    g.plates = path(get(c_plates));
-    g.static_markers = path(get(c_static));
-    g.marker_map = get(c_map);
-    if (!get(c_cover).empty()) g.coverage = get(c_cover);
+    g.name = get("trial");
+    check_trial_name(csv, row.line, g.name, names);
+    g.markers = trial_file(csv, row.line, "markers", base, get("markers"), true);
+    g.plates = trial_file(csv, row.line, "plates", base, get("plates"), true);
+    g.static_markers = trial_file(csv, row.line, "static", base, get("static"), false);
+    g.marker_map = marker_map_in(base, get("marker_map"));
+    if (!get("coverage").empty()) g.coverage = get("coverage");
     if (g.coverage != "all" && g.coverage != "some" && g.coverage != "auto")
       throw Error::at(csv, row.line, "coverage all, some or auto", escaped(g.coverage));
-    g.body = parse_body_fields(csv, row.line, g.name, get(c_sex), get(c_height), get(c_weight));
+    g.body = parse_body_fields(csv, row.line, g.name, get("sex"), get("height_cm"), get("weight_kg"));
     g.body.role = "original";
-    for (const std::string* f : {&g.markers, &g.plates, &g.static_markers})
-      if (!f->empty() && !fs::is_regular_file(*f))
-        throw Error(csv + ":" + std::to_string(row.line) + ": file " + escaped(*f, 200) + " not found",
-                    ErrorKind::not_found);
     out.push_back(std::move(g));
   }
   if (out.empty()) throw Error::in(csv, "no trials listed after the header");

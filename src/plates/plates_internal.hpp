@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,22 +15,36 @@
 
 namespace ptnet {
 
-// Force plates of an OpenSim storage file (.mot / .sto: a header ending in
-// "endheader", named columns, one row per sample). A plate is every group of
-// columns PREFIX + vx vy vz px py pz whose prefix holds "force"
-// ("ground_force_", "1_ground_force_", "ground_force_r_"); other columns are
-// ignored. Lab axes and units as the file (N, m).
+// A plate's sample of a force or a position, kept in single precision (7
+// significant digits: 1 mN in 10 kN, 1 micrometre in 10 m, beyond what
+// plates measure); reads as an Eigen::Vector3d.
+struct PlateVector {
+  std::array<float, 3> v{};
+  PlateVector() = default;
+  PlateVector(double x, double y, double z) : v{float(x), float(y), float(z)} {}
+  PlateVector(const Eigen::Vector3d& p) : PlateVector(p.x(), p.y(), p.z()) {}  // NOLINT: implicit, as Eigen's
+  double operator[](int i) const { return v[std::size_t(i)]; }
+  operator Eigen::Vector3d() const { return {v[0], v[1], v[2]}; }  // NOLINT
+};
+
+// Force plates of a numeric table (OpenSim storage .mot / .sto: a header
+// ending in "endheader", named columns, one row per sample; or CSV). A plate
+// is every group of columns PREFIX + vx vy vz px py pz whose prefix holds
+// "force" ("ground_force_", "1_ground_force_", "ground_force_r_",
+// "l_ground_force_" of ptnet's own force files); other columns are neither
+// parsed nor kept. Lab axes and units as the file (N, m).
 struct ForcePlates {
   struct Plate {
     std::string prefix;
-    std::vector<Eigen::Vector3d> force_n;  // [N]
-    std::vector<Eigen::Vector3d> cop_m;    // [N]
+    std::vector<PlateVector> force_n;  // [N]
+    std::vector<PlateVector> cop_m;    // [N]
   };
   std::vector<double> time_s;  // [N], increasing
   std::vector<Plate> plates;   // [P]
   std::string source;
 };
-// From the file's text (`source` names it in errors), or read from `path`.
+// From the text of a storage file (`source` names it in errors), or read
+// from `path` (storage or CSV by its extension, as TableReader has it).
 ForcePlates parse_grf_mot(std::string_view text, const std::string& source);
 ForcePlates read_grf_mot(const std::string& path);
 

@@ -9,6 +9,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/plates.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/viz.hpp"
 
 namespace ptnet {
@@ -82,15 +83,31 @@ std::string chart(const GaitTrialResult& r, bool by_foot) {
   return svg_line_chart(c);
 }
 
+std::vector<GaitTrial> trials_of(const std::vector<GaitTrialResult>& results) {
+  std::vector<GaitTrial> out;
+  for (const auto& r : results) out.push_back(r.trial);
+  return out;
+}
+
 }  // namespace
+
+void check_physics_report(const std::vector<GaitTrial>& trials, const std::string& out_dir, bool force) {
+  std::vector<std::string> files = {"results.json", "index.html"};
+  for (const GaitTrial& t : trials) {
+    if (const std::string problem = name_problem(t.name); !problem.empty())
+      throw Error::in(out_dir, "trial name " + escaped(t.name) + " " + problem + ": it names the trial's files");
+    for (const char* suffix : {"_sim.mot", "_frames.csv", "_total.svg", "_feet.svg"}) files.push_back(t.name + suffix);
+  }
+  if (const std::string twice = first_repeat(files); !twice.empty())
+    throw Error::in(out_dir, "two trials would write " + escaped(twice) + ": every trial needs a name of its own");
+  check_outputs_in_folder(out_dir, files, force);
+}
 
 void write_physics_report(const std::vector<GaitTrialResult>& results, const std::string& out_dir, bool force) {
   namespace fs = std::filesystem;
-  std::vector<std::string> files = {"results.json", "index.html"};
-  for (const auto& r : results)
-    for (const char* suffix : {"_sim.mot", "_frames.csv", "_total.svg", "_feet.svg"}) files.push_back(r.trial.name + suffix);
-  check_outputs_in_folder(out_dir, files, force);
+  check_physics_report(trials_of(results), out_dir, force);
   make_folder(out_dir);
+  CommitGroup report;  // every file appears at the end, or none
   const auto path = [&](const std::string& name) { return (fs::path(out_dir) / name).string(); };
 
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
@@ -149,6 +166,7 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
       << "<img src=\"" << html_escape(r.trial.name) << "_feet.svg\" alt=\"vertical force per foot\">\n";
   write_text_file(path("results.json"), all.dump(2) + "\n", force);
   write_text_file(path("index.html"), html_page("ptnet physics bench", b.str()), force);
+  report.commit();
 }
 
 }  // namespace ptnet

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/rate.hpp"
 #include "loss_validation.hpp"
 #include "model_folder.hpp"
 #include "ptnet/error.hpp"
@@ -75,7 +76,7 @@ void plan_model(TrainRun& run) {
   if (md.model.contact && !(o.contact_weight > 0))
     throw Error(field_text("contact_weight") + ": a model with a contact head needs a weight > 0");
   if (!md.model.contact) o.contact_weight = 0;
-  if ((o.resume || !o.init.empty()) && std::abs(previous.fps - source.fps()) > 1e-6 * previous.fps)
+  if ((o.resume || !o.init.empty()) && !same_rate(source.fps(), previous.fps))
     throw Error::in(source.path(), "is at " + number_text(source.fps()) + " fps, the model at " +
                                        number_text(previous.fps) + " fps");
   if (md.model.rows != mat.rows || md.model.cols != mat.cols)

@@ -1,0 +1,196 @@
+// What the physics bench reads and what its figures rest on, in a bare
+// clone (no ../shared): the trials CSV (trial names that are file names and
+// one per trial, files resolved and checked as the filesystem and InputFile
+// have them, marker maps beside the CSV), its one column list (the help and
+// docs/physics.md), plates from storage and CSV files and from ptnet's own
+// force files, and the checks of a result (plates on another clock, a
+// negated vertical force, a partial overlap).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "data_test_util.hpp"
+#include "plates/plates_internal.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/io.hpp"
+#include "ptnet/plates.hpp"
+#include "ptnet/sim.hpp"
+
+using namespace ptnet;
+using ptnet::testing_util::TempDir;
+using ptnet::testing_util::error_of;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kHeader = "trial,markers,static,plates,sex,height_cm,weight_kg";
+
+// A folder with a trials CSV of `rows` and the (empty) files they name.
+struct Trials {
+  TempDir dir{"trials"};
+  std::string csv;
+  explicit Trials(const std::string& rows, const std::string& header = kHeader) {
+    for (const char* f : {"w.trc", "w_static.trc", "w.mot", "lab.map"}) std::ofstream(dir.file(f)) << "x\n";
+    csv = dir.file("trials.csv");
+    std::ofstream(csv) << header << "\n" << rows;
+  }
+};
+
+}  // namespace
+
+// Before: the trial name became file names unchecked: "../escaped" wrote
+// four files into the parent of --out (with --force it replaced them), and
+// two trials of one name wrote half the output before an error.
+TEST(GaitTrials, ATrialNameIsAFileNameOfItsOwn) {
+  Trials escape("../escaped,w.trc,w_static.trc,w.mot,male,180,72\n");
+  EXPECT_EQ(error_of([&] { read_gait_trials(escape.csv, ""); }),
+            escape.csv + ":2: expected a trial name that is a file name (it names the trial's outputs), found "
+                         "'../escaped', which holds '/'");
+  Trials twice("w,w.trc,w_static.trc,w.mot,male,180,72\nw,w.trc,,w.mot,female,165,60\n");
+  EXPECT_EQ(error_of([&] { read_gait_trials(twice.csv, ""); }),
+            twice.csv + ":3: expected a trial name of its own, found 'w', the name of line 2's trial too");
+  // The report refuses them too (a library caller's own GaitTrial).
+  GaitTrial t;
+  t.name = "../x";
+  EXPECT_NE(error_of([&] { check_physics_report({t}, escape.dir.file("out"), false); }).find("holds '/'"),
+            std::string::npos);
+  t.name = "w";
+  EXPECT_NE(error_of([&] { check_physics_report({t, t}, escape.dir.file("out"), false); })
+                .find("two trials would write 'w_sim.mot'"),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(escape.dir.file("out")));
+}
+
+// Before: a FIFO was "file ... not found", and "link/../w.trc" through a
+// linked folder too (the path normalised as text).
+TEST(GaitTrials, FilesAreResolvedByTheFilesystemAndSaidAsWhatTheyAre) {
+  Trials t("w,sub/link/../w.trc,,fifo.mot,male,180,72\n");
+  fs::create_directories(t.dir.path / "sub");
+  fs::create_directories(t.dir.path / "other" / "deep");
+  fs::create_symlink(t.dir.path / "other" / "deep", t.dir.path / "sub" / "link");
+  fs::rename(t.dir.file("w.trc"), t.dir.file("other/w.trc"));
+  ASSERT_EQ(::mkfifo(t.dir.file("fifo.mot").c_str(), 0600), 0);
+  // sub/link/.. is other/deep/.. = other, where w.trc is (as text: sub/w.trc).
+  EXPECT_EQ(error_of([&] { read_gait_trials(t.csv, ""); }),
+            t.csv + ":2: plates 'fifo.mot': is a FIFO, expected a regular file");
+  fs::remove(t.dir.file("fifo.mot"));
+  std::ofstream(t.dir.file("fifo.mot")) << "x\n";
+  const auto trials = read_gait_trials(t.csv, "");
+  ASSERT_EQ(trials.size(), 1u);
+  EXPECT_TRUE(fs::is_regular_file(trials[0].markers)) << trials[0].markers;
+  Trials empty("w,,,w.mot,male,180,72\n");
+  EXPECT_EQ(error_of([&] { read_gait_trials(empty.csv, ""); }),
+            empty.csv + ":2: expected a file in column markers, found an empty field");
+}
+
+// Before: marker_map was used as given, against the current folder, while
+// the trial's other files were resolved against the CSV's folder.
+TEST(GaitTrials, AMarkerMapFileIsBesideTheCsvAShippedMapStaysAName) {
+  Trials t("a,w.trc,,w.mot,male,180,72,lab.map\nb,w.trc,,w.mot,male,180,72,delaware\n",
+           std::string(kHeader) + ",marker_map");
+  const auto trials = read_gait_trials(t.csv, "");
+  EXPECT_EQ(trials[0].marker_map, t.dir.file("lab.map"));
+  EXPECT_EQ(trials[1].marker_map, "delaware");
+}
+
+// One list of the trials CSV's columns: the parser reads it, the help is
+// built from it, docs/physics.md documents each (before: the help omitted
+// coverage).
+TEST(GaitTrials, TheColumnsAreOneListThatTheDocsFollow) {
+  EXPECT_EQ(gait_trial_columns_text(), "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage]");
+  std::ifstream in(std::string(PTNET_SOURCE_DIR) + "/docs/physics.md");
+  const std::string page((std::istreambuf_iterator<char>(in)), {});
+  const std::size_t at = page.find("## Trials of one's own");
+  ASSERT_NE(at, std::string::npos);
+  const std::string section = page.substr(at);
+  EXPECT_NE(section.find("columns: `" + gait_trial_columns_text() + "`"), std::string::npos)
+      << "docs/physics.md, Trials of one's own: list the columns as gait_trial_columns_text()";
+  for (const GaitTrialColumn& c : kGaitTrialColumns)
+    EXPECT_NE(section.find(std::string("`") + c.name + "`"), std::string::npos) << c.name << " is not documented";
+  Trials missing("w,w.trc,,w.mot,male,180\n", "trial,markers,static,plates,sex,height_cm");
+  EXPECT_EQ(error_of([&] { read_gait_trials(missing.csv, ""); }).find(missing.csv + ":1: expected a header with column weight_kg"),
+            0u);
+}
+
+// ptnet's force files read back as force plates: one plate per foot, the
+// vertical force on OpenSim's y, the centre of pressure where the foot's
+// heel-toe line puts it (before: only *_vy columns, no plate group).
+TEST(ForcePlates, PtnetsOwnForceFilesAreTwoPlates) {
+  TempDir d("own_forces");
+  ForceTable f;
+  f.mass_kg = 70;
+  f.time_s = {0, 0.01, 0.02};
+  f.total_n = {700, 650, 0};
+  f.foot_n = {{700, 0}, {400, 250}, {0, 0}};
+  f.cop_u = {{0.2, NAN}, {0.7, 0.1}, {NAN, NAN}};
+  f.cop_m = {{Eigen::Vector2d(1.0, 0.2), Eigen::Vector2d(0, 0)},
+             {Eigen::Vector2d(1.1, 0.2), Eigen::Vector2d(0.5, -0.1)},
+             {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)}};
+  for (const char* name : {"a.mot", "a.csv"}) {
+    SCOPED_TRACE(name);
+    write_force_table(f, d.file(name), false);
+    const ForcePlates p = read_grf_mot(d.file(name));
+    ASSERT_EQ(p.plates.size(), 2u);
+    EXPECT_EQ(p.plates[0].prefix, "l_ground_force_");
+    EXPECT_EQ(p.plates[1].prefix, "r_ground_force_");
+    EXPECT_EQ(p.time_s, f.time_s);
+    for (std::size_t t = 0; t < 3; ++t)
+      for (std::size_t s = 0; s < 2; ++s) {
+        EXPECT_EQ(Eigen::Vector3d(p.plates[s].force_n[t]), Eigen::Vector3d(0, f.foot_n[t][s], 0));
+        // OpenSim's axes: (world y, 0, world x).
+        const Eigen::Vector3d at(f.cop_m[t][s].y(), 0, f.cop_m[t][s].x());
+        EXPECT_TRUE(Eigen::Vector3d(p.plates[s].cop_m[t]).isApprox(at, 1e-6) || at.isZero()) << t << " " << s;
+      }
+  }
+}
+
+namespace {
+
+// A result of T frames at 100 Hz whose plates read `plates_bw` (NaN: no
+// sample) and whose every frame is compared.
+GaitTrialResult result_with_plates(const std::vector<double>& plates_bw) {
+  GaitTrialResult r;
+  r.trial.name = "w";
+  r.trial.plates = "w.mot";
+  for (std::size_t t = 0; t < plates_bw.size(); ++t) {
+    r.time_s.push_back(0.01 * double(t));
+    r.plates.total_bw.push_back(plates_bw[t]);
+    r.compared.push_back(true);
+  }
+  return r;
+}
+
+}  // namespace
+
+// Before: plates on another clock or with the vertical force negated gave
+// an empty table, "compared 0 of 151" and exit 0; a partial overlap gave
+// figures without a word.
+TEST(GaitResults, NothingComparedIsAnErrorAndAPartialOverlapAWarning) {
+  const PhysicsBenchOptions o;
+  EXPECT_TRUE(check_gait_result(result_with_plates(std::vector<double>(100, 1.0)), o).empty());
+  EXPECT_EQ(error_of([&] { check_gait_result(result_with_plates(std::vector<double>(100, NAN)), o); }),
+            "w.mot: trial 'w': no plate sample within the markers' 0.000-0.990 s: the plates on another clock? "
+            "nothing to compare");
+  std::vector<double> negated(100, -1.0);
+  negated[0] = negated[1] = 0;
+  EXPECT_EQ(error_of([&] { check_gait_result(result_with_plates(negated), o); }),
+            "w.mot: trial 'w': the vertical force is below zero in 98 % of the frames (mean -0.98 BW): the force on "
+            "the plates, not the ground reaction on the feet; negate the plates' force columns (vx, vy, vz) and run "
+            "again");
+  EXPECT_NE(error_of([&] { check_gait_result(result_with_plates(std::vector<double>(100, 0.0)), o); })
+                .find("the plates carry no load"),
+            std::string::npos);
+  std::vector<double> late(100, NAN);
+  for (std::size_t t = 40; t < 100; ++t) late[t] = 1.0;
+  const auto warnings = check_gait_result(result_with_plates(late), o);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "trial 'w': the plates cover 60 % of the 100 frames (0.400-0.990 s of the markers' "
+                         "0.000-0.990 s): the figures are over those; the plates on another clock?");
+  GaitTrialResult none = result_with_plates(std::vector<double>(100, 1.0));
+  none.compared.assign(100, false);
+  EXPECT_NE(error_of([&] { check_gait_result(none, o); }).find("no frame compared"), std::string::npos);
+}
