@@ -161,13 +161,13 @@ TEST(PhysicsBench, OvergroundPlatesAreComparedOnlyWhereTheySeeEveryFoot) {
   ptnet::GaitTrial t = ptnet::read_gait_trials(std::string(PTNET_SOURCE_DIR) + "/bench/real-gait.csv", dir)[0];
   t.plates = tmp.string();
   const ptnet::GaitTrialResult all = ptnet::run_gait_trial(t, {});
-  EXPECT_EQ(all.coverage, "some");  // auto: a foot on the floor that no plate sees
+  EXPECT_EQ(all.coverage, ptnet::PlateCoverage::some);  // auto: a foot on the floor that no plate sees
   int compared = 0;
   for (bool c : all.compared) compared += c;
   EXPECT_GT(compared, 40);
   EXPECT_LT(compared, int(all.time_s.size()) - 40);
   EXPECT_LE(all.simulated.rmse_bw, 0.10);  // over the frames the plates see whole
-  t.coverage = "all";
+  t.coverage = ptnet::PlateCoverage::all;
   const ptnet::GaitTrialResult forced = ptnet::run_gait_trial(t, {});
   EXPECT_GT(forced.simulated.rmse_bw, 0.3);  // the unseen steps counted as the simulator's error
   fs::remove(tmp);

@@ -6,14 +6,17 @@
 // shoulders), are placed by the frame of their bones in the source (lateral
 // axis from right to left joint, up axis towards spine / neck), since the
 // canonical hip and shoulder offsets need not point the way the source rig's
-// do. The root translation scales with leg length; the motion is re-grounded
-// so that the lowest foot point during stance is at z = 0.
+// do. The root translation scales with leg length, and each frame is moved
+// up or down so that the supporting foot stands where the scaled source's
+// does (support_correction); the motion is re-grounded so that the lowest
+// foot point during stance is at z = 0.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "core/smooth.hpp"
 #include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
@@ -28,12 +31,45 @@ using Eigen::Vector3d;
 namespace {
 
 constexpr double kGroundPercentile = 0.05;  // of per-frame lowest foot points: stance, robust to noise
+constexpr double kSupportBand = 0.02;       // m: a foot this much above the lower one has e^-1 of its weight
+constexpr double kSupportSmoothS = 0.2;     // s: Gaussian sigma of the support correction
 
 double leg_length(const Pose& p) {
   double sum = 0;
   for (int hip : {kLeftHip, kRightHip})
     sum += (p[hip + 1] - p[hip]).norm() + (p[hip + 2] - p[hip + 1]).norm();
   return 0.5 * sum;
+}
+
+// The vertical shift of each frame of `copy` that puts its supporting foot
+// where the source's is, scaled by `ratio` (m, [T]). A copy of canonical
+// proportions does not reach where the source's legs did: marker-derived
+// bones change length as the knee bends (the thighs of a squat trial look
+// 5 cm shorter at its bottom than standing), and a rig's thigh : shank ratio
+// is not the canonical one; with the root height scaled by the mean leg
+// ratio alone, the feet rise off the floor or sink into it as the knees
+// bend. Per frame, each foot's lowest sole point in the scaled source less
+// the copy's, weighted towards the source's lower foot (exp(-its height
+// above it / kSupportBand)), smoothed over kSupportSmoothS: the shift
+// follows a posture (a squat's descent takes ~1 s) but adds no acceleration
+// of its own to the centre of mass at a change of foot or a landing (the
+// load's 4 Hz: ptnet/sim.hpp).
+std::vector<double> support_correction(const Motion& source, const std::vector<Pose>& copy, double ratio) {
+  std::vector<double> shift(copy.size(), 0.0);
+  for (std::size_t t = 0; t < copy.size(); ++t) {
+    const Pose& p = source.frames[t];
+    const Pose& q = copy[t];
+    double z[2], d[2];
+    for (int s = 0; s < 2; ++s) {
+      const int ankle = s ? kRightAnkle : kLeftAnkle, toe = s ? kRightToe : kLeftToe;
+      z[s] = ratio * detail::foot_lowest_z(p[ankle], p[toe]);
+      d[s] = z[s] - detail::foot_lowest_z(q[ankle], q[toe]);
+    }
+    const double low = std::min(z[0], z[1]);
+    const double w0 = std::exp(-(z[0] - low) / kSupportBand), w1 = std::exp(-(z[1] - low) / kSupportBand);
+    shift[t] = (w0 * d[0] + w1 * d[1]) / (w0 + w1);
+  }
+  return gaussian_smooth(shift, kSupportSmoothS * (source.fps > 0 ? source.fps : 30));
 }
 
 }  // namespace
@@ -80,8 +116,12 @@ Motion retarget(const Motion& motion, double height_cm) {
         q[j] = q[parent] + o[j].norm() * dir;
       }
     }
-    lowest.push_back(lowest_foot_z(q));
     out.frames.push_back(q);
+  }
+  const std::vector<double> shift = support_correction(motion, out.frames, ratio);
+  for (std::size_t t = 0; t < out.frames.size(); ++t) {
+    for (Vector3d& v : out.frames[t]) v.z() += shift[t];
+    lowest.push_back(lowest_foot_z(out.frames[t]));
   }
   // Re-ground: a low percentile of the lowest foot point is the floor.
   std::vector<double> sorted = lowest;

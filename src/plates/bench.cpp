@@ -16,6 +16,22 @@
 namespace ptnet {
 namespace fs = std::filesystem;
 
+PlateCoverage parse_plate_coverage(const std::string& text) {
+  if (text == "auto") return PlateCoverage::automatic;
+  if (text == "all") return PlateCoverage::all;
+  if (text == "some") return PlateCoverage::some;
+  throw Error("plate coverage '" + text + "' is not auto, all or some");
+}
+
+const char* plate_coverage_name(PlateCoverage coverage) {
+  switch (coverage) {
+    case PlateCoverage::automatic: return "auto";
+    case PlateCoverage::all: return "all";
+    case PlateCoverage::some: return "some";
+  }
+  return "auto";
+}
+
 PhysicsBenchOptions::PhysicsBenchOptions() {
   sim.placement = Placement::follow;
   sim.sensor = ideal_sensor();
@@ -42,9 +58,11 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
     g.plates = path(get(c_plates));
     g.static_markers = path(get(c_static));
     g.marker_map = get(c_map);
-    if (!get(c_cover).empty()) g.coverage = get(c_cover);
-    if (g.coverage != "all" && g.coverage != "some" && g.coverage != "auto")
-      throw Error::at(csv, row.line, "coverage all, some or auto", escaped(g.coverage));
+    if (!get(c_cover).empty()) try {
+        g.coverage = parse_plate_coverage(get(c_cover));
+      } catch (const Error&) {
+        throw Error::at(csv, row.line, "coverage auto, all or some", escaped(get(c_cover)));
+      }
     g.body = parse_body_fields(csv, row.line, g.name, get(c_sex), get(c_height), get(c_weight));
     g.body.role = "original";
     for (const std::string* f : {&g.markers, &g.plates, &g.static_markers})
@@ -162,23 +180,32 @@ ForceSource model_source(const ForceTable& table, double bw, bool naive, const P
 }
 
 // The frames the figures are over (GaitTrial::coverage): all of them when
-// the plates see every step; else those where every foot in contact, by
-// the plates or the simulator, is on a plate.
-void choose_compared_frames(GaitTrialResult& r, const std::string& coverage, double contact_bw) {
+// the plates see every step; else all but those of the simulator's stances
+// that the plates do not see (their foot loaded on a plate in under half of
+// the contact's frames: a foot beside the plates, on a box, ...), whole, so
+// that no contact is cut where the two disagree on its ends. A stance
+// carries kStanceBw at its peak; a lighter contact (a swing foot grazing
+// the floor) is the simulator's to answer for, and stays compared.
+void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, double contact_bw, double bw) {
+  constexpr double kStanceBw = 0.3;
   const std::size_t T = r.time_s.size();
-  int loaded = 0, unseen = 0;
-  std::vector<bool> every_foot_seen(T, true);
-  for (std::size_t t = 0; t < T; ++t)
-    for (int f = 0; f < 2; ++f) {
-      const bool sim = r.simulated.foot_bw[t][std::size_t(f)] > contact_bw;
-      const bool plate = r.plates.foot_bw[t][std::size_t(f)] > contact_bw;
-      loaded += sim;
-      unseen += sim && !plate;
-      if (sim && !plate) every_foot_seen[t] = false;
-    }
-  const bool some = coverage == "some" || (coverage == "auto" && unseen > loaded / 10);
-  r.coverage = some ? "some" : "all";
-  r.compared = some ? every_foot_seen : std::vector<bool>(T, true);
+  std::vector<bool> seen(T, true);
+  bool missed = false;
+  for (const Contact& c : r.simulated.contacts) {
+    std::vector<std::size_t> frames;
+    int on_plate = 0;
+    for (std::size_t t = 0; t < T; ++t)
+      if (r.time_s[t] >= c.start_s && r.time_s[t] <= c.end_s) {
+        frames.push_back(t);
+        on_plate += r.plates.foot_bw[t][std::size_t(c.foot)] > contact_bw;
+      }
+    if (frames.empty() || 2 * on_plate >= int(frames.size()) || c.peak_n < kStanceBw * bw) continue;
+    missed = true;
+    for (std::size_t t : frames) seen[t] = false;
+  }
+  const bool some = coverage == PlateCoverage::some || (coverage == PlateCoverage::automatic && missed);
+  r.coverage = some ? PlateCoverage::some : PlateCoverage::all;
+  r.compared = some ? seen : std::vector<bool>(T, true);
 }
 
 }  // namespace
@@ -214,7 +241,7 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   detail::CompareOptions co;
   co.flight_bw = o.flight_bw;
   co.contact_bw = o.contact_n / bw;
-  choose_compared_frames(r, trial.coverage, co.contact_bw);
+  choose_compared_frames(r, trial.coverage, co.contact_bw, bw);
   detail::compare_with_plates(r.simulated, r.plates, r.time_s, r.compared, co);
   detail::compare_with_plates(r.naive, r.plates, r.time_s, r.compared, co);
   for (std::size_t t = 0; t < r.time_s.size(); ++t) {

@@ -117,7 +117,7 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
     j["fps"] = r.fps;
     j["frames"] = r.time_s.size();
     j["treadmill_belt_mps"] = r.belt_mps;
-    j["coverage"] = r.coverage;
+    j["coverage"] = plate_coverage_name(r.coverage);
     j["compared_frames"] = std::count(r.compared.begin(), r.compared.end(), true);
     j["plate_flight_frames"] = r.flight_frames;
     j["single_stance_frames"] = r.single_stance_frames;
@@ -142,7 +142,7 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
   for (const auto& r : results)
     b << "<h2>" << html_escape(r.trial.name) << "</h2>\n<p>" << html_escape(sex_name(r.trial.body.sex)) << ", "
       << fixed_text(r.trial.body.height_cm, 1) << " cm, " << fixed_text(r.trial.body.weight_kg, 1) << " kg; "
-      << fixed_text(r.fps, 0) << " frames/s; plates see " << (r.coverage == "all" ? "every step" : "some steps")
+      << fixed_text(r.fps, 0) << " frames/s; plates see " << (r.coverage == PlateCoverage::all ? "every step" : "some steps")
       << ": " << std::count(r.compared.begin(), r.compared.end(), true) << " of " << r.time_s.size() << " frames compared"
       << (r.belt_mps > 0 ? "; treadmill belt " + fixed_text(r.belt_mps, 2) + " m/s removed" : std::string()) << ".</p>\n"
       << "<img src=\"" << html_escape(r.trial.name) << "_total.svg\" alt=\"total vertical force\">\n"

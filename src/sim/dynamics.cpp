@@ -9,6 +9,25 @@
 #include "sim_internal.hpp"
 
 namespace ptnet {
+
+std::vector<bool> detail::floor_contact(const Motion& motion, const Body& body, const MotionPlacement& place,
+                                        double band_m) {
+  const int T = motion.size();
+  std::vector<bool> on_floor(static_cast<std::size_t>(T), false);
+  for (int t = 0; t < T; ++t) {
+    Pose p = motion.frames[std::size_t(t)];
+    lift_feet(p, place.foot_lift);
+    const PosedBody pb = pose_body(body, p);
+    double lowest = std::min(foot_lowest_z(body.sole(), pb.left_foot), foot_lowest_z(body.sole(), pb.right_foot));
+    for (int s = 0; s < kSegmentCount; ++s) {
+      const SegmentShape& seg = body.segments()[std::size_t(s)];
+      if (seg.touches_ground) lowest = std::min({lowest, pb.a[s].z() - seg.radius_a_m, pb.b[s].z() - seg.radius_b_m});
+    }
+    on_floor[std::size_t(t)] = lowest - (place.floor.empty() ? 0.0 : place.floor[std::size_t(t)]) < band_m;
+  }
+  return on_floor;
+}
+
 namespace {
 constexpr double kMaxFlightS = 0.6;  // s: a longer time off the floor is not a human flight (0.44 m jump)
 constexpr double kTooShortS = 0.15;  // s: a shorter one is not told from a flight
@@ -22,26 +41,14 @@ MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options, c
   const double ratio = retarget_scale(motion, kFloorReferenceHeightCm);
   const MotionPlacement place = (placed ? *placed : place_motion(motion, options)).scaled(ratio);
   const Motion copy = detail::pitch_corrected(retarget(motion, kFloorReferenceHeightCm), place.foot_pitch);
-  const Body& body = detail::reference_body();
-  std::vector<bool> on_floor(static_cast<std::size_t>(T), false);
-  for (int t = 0; t < T; ++t) {
-    Pose p = copy.frames[std::size_t(t)];
-    detail::lift_feet(p, place.foot_lift);
-    const PosedBody pb = pose_body(body, p);
-    double lowest = std::min(detail::foot_lowest_z(body.sole(), pb.left_foot), detail::foot_lowest_z(body.sole(), pb.right_foot));
-    for (int s = 0; s < kSegmentCount; ++s) {
-      const SegmentShape& seg = body.segments()[std::size_t(s)];
-      if (seg.touches_ground) lowest = std::min({lowest, pb.a[s].z() - seg.radius_a_m, pb.b[s].z() - seg.radius_b_m});
-    }
-    on_floor[std::size_t(t)] = lowest - (place.floor.empty() ? 0.0 : place.floor[std::size_t(t)]) < options.compliance_m;
-  }
+  const std::vector<bool> on_floor = detail::floor_contact(copy, detail::reference_body(), place, options.compliance_m);
   // A stretch without contact is a flight when the centre of mass falls
   // through it (its mean vertical acceleration inside is below -g / 2) and
   // it is no longer than a human flight; otherwise the body is held up by
   // something else. Stretches of 0.15 s or less are too short to tell (their
   // acceleration is that of the take-off and the landing as much as of the flight).
   std::vector<double> z;
-  for (const Pose& p : copy.frames) z.push_back(centre_of_mass(body, p).z());
+  for (const Pose& p : copy.frames) z.push_back(centre_of_mass(detail::reference_body(), p).z());
   const double g = anthropometry::kGravity, fps = copy.fps;
   int unsupported = 0;
   for (int a = 0; a < T;) {

@@ -8,10 +8,17 @@
 #include <cmath>
 
 #include "core/anthropometry.hpp"
+#include "core/smooth.hpp"
 #include "sim_internal.hpp"
 
 namespace ptnet {
 namespace {
+
+constexpr double kLandingHzFactor = 1.5;   // the cutoff around a landing, x com_filter_hz
+constexpr double kMinFlightS = 0.08;       // s: off the floor at least this long before a touch-down
+constexpr double kLandingBeforeS = 0.05;   // s: the landing window from before the touch-down
+constexpr double kLandingAfterS = 0.05;    // s: ... to after it (the impact)
+constexpr double kLandingTaperS = 0.05;    // s: raised-cosine ramps either side of the window
 
 // Second differences of x, [T] (ends copied), low-passed: -3 dB at hz for
 // a Gaussian of sigma = sqrt(ln 2) / (2 pi hz).
@@ -23,15 +30,41 @@ std::vector<double> acceleration(const std::vector<double>& x, double fps, doubl
     a[0] = a[1];
     a[T - 1] = a[T - 2];
   }
-  if (hz > 0) a = detail::gaussian_smooth(a, std::sqrt(std::log(2.0)) / (2 * M_PI * hz) * fps);
+  if (hz > 0) a = gaussian_smooth(a, std::sqrt(std::log(2.0)) / (2 * M_PI * hz) * fps);
   return a;
+}
+
+// Per frame, how much of the landing cutoff the vertical acceleration takes
+// (0..1, [T]): 1 from kLandingBeforeS before a touch-down that ends a
+// flight (kMinFlightS or more without contact) to kLandingAfterS after it,
+// raised-cosine ramps of kLandingTaperS either side, 0 elsewhere.
+std::vector<double> landing_weight(const std::vector<bool>& contact, double fps) {
+  const int T = int(contact.size());
+  std::vector<double> w(contact.size(), 0.0);
+  const int min_flight = std::max(1, int(std::lround(kMinFlightS * fps)));
+  const double taper = kLandingTaperS * fps;
+  for (int t = 1, off = contact[0] ? 0 : 1; t < T; ++t) {
+    if (!contact[std::size_t(t)]) {
+      ++off;
+      continue;
+    }
+    if (off >= min_flight) {
+      const double lo = t - kLandingBeforeS * fps, hi = t + kLandingAfterS * fps;
+      for (int k = std::max(0, int(lo - taper)); k < std::min(T, int(hi + taper) + 1); ++k) {
+        const double d = k < lo ? (lo - k) / taper : (k > hi ? (k - hi) / taper : 0.0);
+        if (d < 1) w[std::size_t(k)] = std::max(w[std::size_t(k)], 0.5 + 0.5 * std::cos(M_PI * d));
+      }
+    }
+    off = 0;
+  }
+  return w;
 }
 
 }  // namespace
 
 namespace detail {
 
-ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz) {
+ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz, const std::vector<bool>* contact) {
   const int T = motion.size();
   const double g = anthropometry::kGravity;
   const double fps = motion.fps > 0 ? motion.fps : 30;
@@ -43,7 +76,18 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz)
   // Horizontal: half the cutoff; the zero-moment point only steers the
   // centre of pressure, and capture jitter in a_xy moves it by z / g per m/s^2.
   const std::vector<double> ax = acceleration(x, fps, 0.5 * com_filter_hz),
-                            ay = acceleration(y, fps, 0.5 * com_filter_hz), az = acceleration(z, fps, com_filter_hz);
+                            ay = acceleration(y, fps, 0.5 * com_filter_hz), az0 = acceleration(z, fps, com_filter_hz);
+  // Around a landing the vertical acceleration is filtered at a higher
+  // cutoff: a touch-down after a flight is a step from free fall to the
+  // impact, whose peak comes 30-50 ms after it (drop jumps, running); 4 Hz
+  // spreads it over ~0.2 s, a lower, later peak with its leading edge cut
+  // off by the flight.
+  std::vector<double> az = az0;
+  if (contact && com_filter_hz > 0) {
+    const std::vector<double> w = landing_weight(*contact, fps);
+    const std::vector<double> fast = acceleration(z, fps, kLandingHzFactor * com_filter_hz);
+    for (int t = 0; t < T; ++t) az[std::size_t(t)] += w[std::size_t(t)] * (fast[std::size_t(t)] - az0[std::size_t(t)]);
+  }
   ComTrack out;
   out.load_n.resize(T);
   out.zmp.resize(T);

@@ -69,10 +69,17 @@ struct ComTrack {
   std::vector<double> load_n;         // [T] F = m (g + a_z), N
   std::vector<Eigen::Vector2d> zmp;   // [T] zero-moment point (world x, y), m
 };
-ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz);
+// `contact` ([T], or null): the frames with a body surface on the floor
+// (floor_contact); the vertical acceleration is then filtered within each
+// stretch of contact and of none separately.
+ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz,
+                   const std::vector<bool>* contact = nullptr);
 
-// Gaussian smoothing of a series with sigma in samples, edges renormalised.
-std::vector<double> gaussian_smooth(const std::vector<double>& x, double sigma);
+// Per frame of `motion` (pitch corrected) as `place` lays it on the floor:
+// whether some body surface (a sole, or a segment that touches the ground)
+// lies within `band_m` of the floor ([T]).
+std::vector<bool> floor_contact(const Motion& motion, const Body& body, const MotionPlacement& place,
+                                double band_m);
 
 // Rows [first, last] of a frame that may hold pressure; the others are 0
 // (first > last: none).

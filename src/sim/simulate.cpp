@@ -79,7 +79,8 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
   for (std::size_t k = 0; k < seeds.size(); ++k) reads.emplace_back(mat, T, motion.fps);
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
-  const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
+  const std::vector<bool> contact = detail::floor_contact(motion, body, place, options.compliance_m);
+  const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz, &contact);
   const std::vector<double> floor = place.floor.empty() ? std::vector<double>(std::size_t(T), 0.0) : place.floor;
   detail::Rasteriser raster(mat, options.subsamples, options.compliance_m + options.max_sink_m);
   detail::Foundation foundation(raster.depth().grid, options.compliance_m, options.max_sink_m);
