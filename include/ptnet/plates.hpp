@@ -40,8 +40,6 @@ struct Contact {
 // figures) or `automatic` ("auto" in a trials CSV: `some` when the plates
 // miss one of the simulator's contacts, else `all`).
 enum class PlateCoverage { automatic, all, some };
-PlateCoverage parse_plate_coverage(const std::string& text);  // "auto|all|some"; throws Error
-const char* plate_coverage_name(PlateCoverage coverage);
 
 // A trial of a gait lab: markers, plates and the subject.
 struct GaitTrial {

@@ -14,6 +14,10 @@
 
 namespace ptnet {
 
+// A trials CSV's coverage ("auto|all|some"; throws Error) and its name.
+PlateCoverage parse_plate_coverage(const std::string& text);
+const char* plate_coverage_name(PlateCoverage coverage);
+
 // Force plates of an OpenSim storage file (.mot / .sto: a header ending in
 // "endheader", named columns, one row per sample). A plate is every group of
 // columns PREFIX + vx vy vz px py pz whose prefix holds "force"

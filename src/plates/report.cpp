@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "plates_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/plates.hpp"

@@ -1,9 +1,10 @@
 // Total vertical ground reaction force from the centre-of-mass motion:
 // F = m (g + a_z) (Newton's second law on the whole body; Winter, Biomechanics
 // and Motor Control of Human Movement, ch. 5), and where it acts: the zero-
-// moment point of the centre of mass, x_com - z_com a_xy / (g + a_z) (the
-// inverted-pendulum balance of moments about the ground; Vukobratovic &
-// Borovac 2004), neglecting the segments' own angular momentum.
+// moment point of the segments' masses, sum m_i (x_i (g + z''_i) - z_i x''_i)
+// / sum m_i (g + z''_i) (the balance of moments about the ground;
+// Vukobratovic & Borovac 2004), neglecting the segments' spin about their
+// own centres.
 #include <algorithm>
 #include <cmath>
 
@@ -60,6 +61,43 @@ std::vector<double> landing_weight(const std::vector<bool>& contact, double fps)
   return w;
 }
 
+// The zero-moment point of the segments' masses, each at its own centre
+// (world x, y; m, [T]): sum m_i (x_i (g + z''_i) - z_i x''_i) / sum m_i (g +
+// z''_i), which keeps what the whole-body formula neglects: the angular
+// momentum of the segments' motion about the centre of mass (a swinging leg,
+// the arms). Accelerations low-passed at hz; beyond 1 g horizontally and
+// 5 g vertically they are capture glitches (clamped); with (almost) no load
+// the point is meaningless: the centre of mass's projection.
+std::vector<Eigen::Vector2d> segment_zmp(const Motion& motion, const Body& body, double fps, double hz) {
+  const int T = motion.size();
+  const double g = anthropometry::kGravity;
+  std::vector<Eigen::Vector2d> num(std::size_t(T), Eigen::Vector2d::Zero()), com(std::size_t(T), Eigen::Vector2d::Zero());
+  std::vector<double> den(std::size_t(T), 0.0);
+  std::array<std::array<std::vector<double>, 3>, kSegmentCount> c;  // [segment][axis][T]
+  for (int t = 0; t < T; ++t) {
+    const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
+    for (int s = 0; s < kSegmentCount; ++s)
+      for (int k = 0; k < 3; ++k) c[std::size_t(s)][std::size_t(k)].push_back(0.5 * (pb.a[s][k] + pb.b[s][k]));
+  }
+  for (int s = 0; s < kSegmentCount; ++s) {
+    const auto& p = c[std::size_t(s)];
+    const double m = body.segments()[std::size_t(s)].mass_kg;
+    const std::vector<double> ax = acceleration(p[0], fps, hz), ay = acceleration(p[1], fps, hz),
+                              az = acceleration(p[2], fps, hz);
+    for (std::size_t t = 0; t < std::size_t(T); ++t) {
+      const double gz = g + std::clamp(az[t], -g, 4 * g);
+      const Eigen::Vector2d ah(std::clamp(ax[t], -g, g), std::clamp(ay[t], -g, g));
+      num[t] += m * (Eigen::Vector2d(p[0][t], p[1][t]) * gz - p[2][t] * ah);
+      com[t] += m * Eigen::Vector2d(p[0][t], p[1][t]);
+      den[t] += m * gz;
+    }
+  }
+  std::vector<Eigen::Vector2d> zmp(static_cast<std::size_t>(T));
+  for (std::size_t t = 0; t < std::size_t(T); ++t)
+    zmp[t] = den[t] > 0.2 * g * body.mass_kg() ? Eigen::Vector2d(num[t] / den[t]) : Eigen::Vector2d(com[t] / body.mass_kg());
+  return zmp;
+}
+
 }  // namespace
 
 namespace detail {
@@ -68,15 +106,9 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz,
   const int T = motion.size();
   const double g = anthropometry::kGravity;
   const double fps = motion.fps > 0 ? motion.fps : 30;
-  std::vector<double> x(T), y(T), z(T);
-  for (int t = 0; t < T; ++t) {
-    const Eigen::Vector3d c = centre_of_mass(body, motion.frames[t]);
-    x[t] = c.x(), y[t] = c.y(), z[t] = c.z();
-  }
-  // Horizontal: half the cutoff; the zero-moment point only steers the
-  // centre of pressure, and capture jitter in a_xy moves it by z / g per m/s^2.
-  const std::vector<double> ax = acceleration(x, fps, 0.5 * com_filter_hz),
-                            ay = acceleration(y, fps, 0.5 * com_filter_hz), az0 = acceleration(z, fps, com_filter_hz);
+  std::vector<double> z(T);
+  for (int t = 0; t < T; ++t) z[t] = centre_of_mass(body, motion.frames[t]).z();
+  const std::vector<double> az0 = acceleration(z, fps, com_filter_hz);
   // Around a landing the vertical acceleration is filtered at a higher
   // cutoff: a touch-down after a flight is a step from free fall to the
   // impact, whose peak comes 30-50 ms after it (drop jumps, running); 4 Hz
@@ -90,18 +122,9 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz,
   }
   ComTrack out;
   out.load_n.resize(T);
-  out.zmp.resize(T);
-  for (int t = 0; t < T; ++t) {
-    // Clamped at 0 (the ground only pushes) and at 5 g (capture glitches).
-    const double a = std::clamp(az[t], -g, 4 * g);
-    out.load_n[t] = body.mass_kg() * (g + a);
-    // Horizontal accelerations beyond ~1 g are capture glitches too; with
-    // (almost) no load the point is meaningless: keep the CoM's projection.
-    const double gz = g + a;
-    const Eigen::Vector2d ah(std::clamp(ax[t], -g, g), std::clamp(ay[t], -g, g));
-    const double h = std::max(0.0, z[t]);
-    out.zmp[t] = Eigen::Vector2d(x[t], y[t]) - (gz > 0.2 * g ? h / gz : 0.0) * ah;
-  }
+  for (int t = 0; t < T; ++t)  // clamped at 0 (the ground only pushes) and at 5 g (capture glitches)
+    out.load_n[t] = body.mass_kg() * (g + std::clamp(az[t], -g, 4 * g));
+  out.zmp = segment_zmp(motion, body, fps, com_filter_hz);
   return out;
 }
 
