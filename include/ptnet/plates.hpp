@@ -91,6 +91,7 @@ struct GaitTrialResult {
   ForceSource plates, simulated, naive;
   PlateCoverage coverage = PlateCoverage::all;  // all or some (GaitTrial::coverage decided)
   std::vector<bool> compared;  // [T] the frames the figures are over
+  int carried_frames = 0;      // left out: a seat carries part of the body (MotionDynamics::carried)
   int flight_frames = 0;       // the plates' frames below flight_bw (compared)
   int single_stance_frames = 0;
   double belt_mps = 0;         // the treadmill belt removed

@@ -188,6 +188,7 @@ ForceSource model_source(const ForceTable& table, double bw, bool naive, const P
 // the floor) is the simulator's to answer for, and stays compared.
 void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, double contact_bw, double bw) {
   constexpr double kStanceBw = 0.3;
+  constexpr double kCarriedBw = 0.02;
   const std::size_t T = r.time_s.size();
   std::vector<bool> seen(T, true);
   bool missed = false;
@@ -206,6 +207,11 @@ void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, double c
   const bool some = coverage == PlateCoverage::some || (coverage == PlateCoverage::automatic && missed);
   r.coverage = some ? PlateCoverage::some : PlateCoverage::all;
   r.compared = some ? seen : std::vector<bool>(T, true);
+  // Frames a seat carries (MotionDynamics::carried): the plates under the
+  // feet see what is left of the load, the simulator's seat share is a model.
+  r.carried_frames = 0;
+  for (std::size_t t = 0; t < T; ++t)
+    if (r.table.carried_n[t] > kCarriedBw * bw) r.compared[t] = false, ++r.carried_frames;
 }
 
 }  // namespace

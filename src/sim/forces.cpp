@@ -17,13 +17,13 @@ void write_force_table(const ForceTable& f, const std::string& path, bool force)
   rows.reserve(f.time_s.size());
   for (std::size_t t = 0; t < f.time_s.size(); ++t)
     rows.push_back({f.time_s[t], f.total_n[t], f.total_n[t] / bw, f.foot_n[t][0], f.foot_n[t][1],
-                    f.foot_n[t][0] / bw, f.foot_n[t][1] / bw, f.cop_u[t][0], f.cop_u[t][1]});
+                    f.foot_n[t][0] / bw, f.foot_n[t][1] / bw, f.cop_u[t][0], f.cop_u[t][1], f.carried_n[t] / bw});
   std::ostringstream note;
   note << std::setprecision(9) << "units: N for *_vy, body weights for *_bw (mass " << f.mass_kg
-       << " kg), cop_u 0 heel .. 1 toe along the foot (nan: unloaded)";
+       << " kg), cop_u 0 heel .. 1 toe along the foot (nan: unloaded), carried_bw the load a seat carries off the floor";
   write_table_file(path,
                    {"time", "total_force_vy", "total_force_bw", "l_ground_force_vy", "r_ground_force_vy", "l_force_bw",
-                    "r_force_bw", "l_cop_u", "r_cop_u"},
+                    "r_force_bw", "l_cop_u", "r_cop_u", "carried_bw"},
                    rows, note.str(), force);
 }
 
@@ -33,6 +33,7 @@ ForceTable force_table(const std::vector<FrameTrace>& trace, const Motion& motio
   for (std::size_t t = 0; t < trace.size(); ++t) {
     f.time_s.push_back(motion.start_s + double(t) / motion.fps);
     f.total_n.push_back(trace[t].load_n);
+    f.carried_n.push_back(trace[t].carried_n);
     std::array<double, 2> n{}, u{};
     for (int s = 0; s < 2; ++s) {
       n[std::size_t(s)] = trace[t].foot[std::size_t(s)].force_n;

@@ -21,6 +21,12 @@ constexpr double kLandingBeforeS = 0.05;   // s: the landing window from before 
 constexpr double kLandingAfterS = 0.05;    // s: ... to after it (the impact)
 constexpr double kLandingTaperS = 0.05;    // s: raised-cosine ramps either side of the window
 
+// Retargeting's height correction of frame t (Motion::support_shift_m), which
+// is no motion of the body: the load's dynamics leave it out.
+double support_shift(const Motion& motion, int t) {
+  return motion.support_shift_m.empty() ? 0.0 : motion.support_shift_m[std::size_t(t)];
+}
+
 // Second differences of x, [T] (ends copied), low-passed: -3 dB at hz for
 // a Gaussian of sigma = sqrt(ln 2) / (2 pi hz).
 std::vector<double> acceleration(const std::vector<double>& x, double fps, double hz) {
@@ -77,7 +83,8 @@ std::vector<Eigen::Vector2d> segment_zmp(const Motion& motion, const Body& body,
   for (int t = 0; t < T; ++t) {
     const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
     for (int s = 0; s < kSegmentCount; ++s)
-      for (int k = 0; k < 3; ++k) c[std::size_t(s)][std::size_t(k)].push_back(0.5 * (pb.a[s][k] + pb.b[s][k]));
+      for (int k = 0; k < 3; ++k)
+        c[std::size_t(s)][std::size_t(k)].push_back(0.5 * (pb.a[s][k] + pb.b[s][k]) - (k == 2 ? support_shift(motion, t) : 0.0));
   }
   for (int s = 0; s < kSegmentCount; ++s) {
     const auto& p = c[std::size_t(s)];
@@ -107,7 +114,7 @@ ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz,
   const double g = anthropometry::kGravity;
   const double fps = motion.fps > 0 ? motion.fps : 30;
   std::vector<double> z(T);
-  for (int t = 0; t < T; ++t) z[t] = centre_of_mass(body, motion.frames[t]).z();
+  for (int t = 0; t < T; ++t) z[t] = centre_of_mass(body, motion.frames[t]).z() - support_shift(motion, t);
   const std::vector<double> az0 = acceleration(z, fps, com_filter_hz);
   // Around a landing the vertical acceleration is filtered at a higher
   // cutoff: a touch-down after a flight is a step from free fall to the
