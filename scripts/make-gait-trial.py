@@ -16,31 +16,37 @@ low-passed at 4 Hz, the marker path's readings). Deterministic: the same
 bytes on every run (no random numbers; numbers printed at fixed precision).
 
 The physics (one subject: male, 1.75 m, 70 kg; an instrumented treadmill
-with one belt and plate per foot, belt 1.25 m/s):
+with one belt and plate per foot, belt 1.10 m/s):
  1. Gait events: stride T = 1.10 s (109 steps/min), stance 62 % of the
     stride (0.682 s), so each double support is 12 % of it; the right heel
     strikes at 0.12 s + k T, the left half a stride later.
  2. Each foot's vertical force over its stance (u = 0..1) is the usual two
-    humps, a sum of two smooth bumps: A [u^2 (1-u)^6 / b + 0.95 u^6 (1-u)^2 / b]
-    (b = 0.25^2 0.75^6, so the bumps peak at 1 at u = 0.25 and 0.75). A is
-    set so that over a stride the mean of the whole-body force F is m g
-    exactly (each stance carries m g T / 2): peaks 1.14 and 1.09 BW, the
-    valley 0.79 BW. Fore-aft: braking then propulsion, 0.18 BW (u^2 (1-u)^6
-    - u^6 (1-u)^2) / b backwards-then-forwards, zero net impulse per stance.
-    Medio-lateral: 0.06 of the foot's vertical force, towards the midline.
+    humps, a sum of smooth bumps (b(u; p, q) = u^p (1-u)^q scaled to peak
+    at 1): A [b(u; 2, 8) + 0.95 b(u; 8, 2)] + M b(u; 4, 4), humps at 20 and
+    80 % of stance. A and M are set so that the valley at mid-stance is
+    0.75 BW and the mean of the whole-body force F over a stride is m g
+    exactly (each stance carries m g T / 2, B-function integrals): peaks
+    1.15 and 1.10 BW, 1.30 BW in double support. Fore-aft: braking then
+    propulsion, 0.18 BW [b(u; 2, 6) - b(u; 6, 2)] backwards-then-forwards,
+    zero net impulse per stance. Medio-lateral: 0.06 of the foot's vertical
+    force, towards the midline.
  3. Newton on the whole body: the centre of mass (CoM) accelerates as
     F / m - g (vertical) and F_x / m, F_z / m (horizontal), integrated twice
-    on a 2400 Hz grid (trapezoids, the mean removed once per integral, so
+    on a 3600 Hz grid (trapezoids, the mean removed once per integral, so
     the CoM's path is periodic: the mean of F over a stride is m g). The
-    CoM travels at 1.25 m/s plus that oscillation, overground.
+    CoM travels at 1.10 m/s plus that oscillation, overground.
  4. The feet: flat on the floor through mid-stance; a heel rocker from heel
-    strike (foot pitched 15 degrees toes up, turning about the heel) to foot
-    flat at 13 % of stance, a forefoot rocker from heel off at 55 % of
-    stance to toe off (30 degrees heels up, turning about the sole under the
-    metatarsal heads, the toes flat); between, the foot swings (quintic
-    minimum-jerk in position and pitch, a 5 cm lift of 64 s^3 (1-s)^3), so
-    every trajectory is smooth to the acceleration. A foot does not slide
-    while it is loaded. Feet straight ahead, under the hip joints.
+    strike (foot pitched 20 degrees toes up, turning about the heel, landed
+    at rest) to foot flat at 13 % of stance (minimum-jerk); a forefoot
+    rocker from heel off at 50 % of stance to toe off (40 degrees heel up,
+    quadratic, turning about the sole under the metatarsal heads, the toes
+    flat); between, the foot swings: cubic Hermite curves in the heel's
+    position and the foot's pitch that leave with the rocker's velocities
+    and land at rest, plus a lift of 0.10 m x 16 s^2 (1-s)^2, so every
+    trajectory is smooth to the velocity. A foot does not slide while it
+    is loaded. Feet straight ahead, under the hip joints. The hip passes
+    over the flat foot's ankle at the fraction of stance that lets the
+    pelvis stand highest (a golden-section search: 0.365).
  5. The skeleton is ptnet's canonical one for 1.75 m (Drillis-Contini:
     thigh 0.245 H, shank 0.246 H, hips 0.0475 H either side of the pelvis,
     ankle 0.039 H above the sole, the toe joint 0.0790 H ahead and 0.030 H
@@ -51,7 +57,7 @@ with one belt and plate per foot, belt 1.25 m/s):
     trunk and arms move with the pelvis. The pelvis is placed so that this
     body's CoM follows step 3 exactly (fixed-point iteration on the legs'
     share), its mean height the highest at which no knee straightens beyond
-    the chain's reach (0.995 of thigh + shank at the longest).
+    the chain's reach (0.999 of thigh + shank at the longest).
  6. Markers on that skeleton, placed so that the methods of docs/markers.md
     recover its joints: ASIS and V.Sacral by Harrington et al. (2007)
     inverted (inter-ASIS width 0.33 PW + 7.3 mm = the hips' lateral offset,
@@ -62,7 +68,7 @@ with one belt and plate per foot, belt 1.25 m/s):
     joint, normal to the heel -> toe line); sternum; acromia (0.17 x the
     biacromial breadth above the shoulder joints, Rab et al. 2002).
  7. The treadmill: every lab position is the overground one less the belt's
-    1.25 m/s x t (the subject stays over the plates, a planted foot moves
+    1.10 m/s x t (the subject stays over the plates, a planted foot moves
     back with the belt); the forces are the overground ones (a constant
     velocity changes no acceleration). The centre of pressure runs along
     the foot from the heel (0.06 of the foot's length from its back) to the
@@ -331,10 +337,11 @@ def limb_com(lg):
     return s / 100.0
 
 
-def pelvis_path(k, osc, height):
+def pelvis_path(k, osc, height, strict=False):
     """The pelvis at samples k such that the body's CoM is `height` + the
-    oscillation (and 1.25 m/s forward): the rigid part moves with the pelvis,
-    the legs' share is taken off by fixed-point iteration."""
+    oscillation (and SPEED forward): the rigid part moves with the pelvis,
+    the legs' share is taken off by fixed-point iteration (to 1e-12 m;
+    `strict`: or fail; the searches also try heights the legs cannot reach)."""
     target = osc[np.mod(k, N_STRIDE)] + np.stack([SPEED * k / GRID_HZ, 0 * k, height + 0 * k], axis=1)
     pelvis = target.copy()
     for _ in range(60):
@@ -345,6 +352,9 @@ def pelvis_path(k, osc, height):
         if np.max(np.abs(new - pelvis)) < 1e-12:
             break
         pelvis = new
+    else:
+        if strict:
+            raise SystemExit("make-gait-trial: the pelvis did not converge")
     return pelvis, legs(pelvis, k)
 
 
@@ -495,7 +505,7 @@ def main():
     OVER_ANKLE[0] = round(0.5 * (a + b), 4)
     height = highest_pelvis(k, osc)
     t = k / GRID_HZ
-    pelvis, lg = pelvis_path(k, osc, height)
+    pelvis, lg = pelvis_path(k, osc, height, strict=True)
     walk = body_markers(pelvis, lg, static=False)
 
     # The static trial: standing, feet flat under the hips, knees straight.
@@ -557,8 +567,8 @@ def report(k, t, pelvis, lg, walk, height, osc, out_dir, files):
     half = len(one) // 2
     print("  vertical force per foot: peaks %.3f / %.3f BW, valley %.3f BW; total %.3f..%.3f BW"
           % (one[:half].max(), one[half:].max(), one[half], fz.min() / BW, fz.max() / BW))
-    print("  CoM: mean height %.4f m, vertical range %.1f mm, fore-aft %.1f mm, lateral %.1f mm"
-          % (height, 1000 * np.ptp(osc[:, 2]), 1000 * np.ptp(osc[:, 0]), 1000 * np.ptp(osc[:, 1])))
+    print("  CoM path: vertical range %.1f mm, fore-aft %.1f mm, lateral %.1f mm"
+          % (1000 * np.ptp(osc[:, 2]), 1000 * np.ptp(osc[:, 0]), 1000 * np.ptp(osc[:, 1])))
     print("  knee flexion %.1f..%.1f deg (10-50 %% of stance: %.1f..%.1f); hip-ankle reach up to %.4f; hip over the ankle at %.4f of stance"
           % (knee.min(), knee.max(), loading.min(), loading.max(), max(lg[s]["reach"].max() for s in "RL"), OVER_ANKLE[0]))
     print("  frames %d, single stance %d; naive reference RMSE %.4f BW; 4 Hz low-passed CoM force RMSE %.4f BW"

@@ -63,6 +63,15 @@ TEST(GaitTrial, TheMarkerPathRecoversTheSkeletonItWasMadeOn) {
   ptnet::MarkerReport r;
   const ptnet::Motion m = load(&r);
   ASSERT_EQ(m.size(), 151);
+  // load_motion reads a .trc as markers, as motion_from_trc does.
+  ptnet::MotionOptions o;
+  o.fps = 60;
+  o.static_markers = kDir + "/walk_static.trc";
+  const ptnet::Motion loaded = ptnet::load_motion(kDir + "/walk.trc", o);
+  ASSERT_EQ(loaded.size(), m.size());
+  for (int t = 0; t < m.size(); ++t)
+    for (int j = 0; j < ptnet::kJointCount; ++j)
+      ASSERT_EQ(loaded.frames[std::size_t(t)][j], m.frames[std::size_t(t)][j]) << t << " " << j;
   EXPECT_EQ(r.map, "delaware");
   EXPECT_EQ(r.up_axis, "y");
   EXPECT_EQ(r.calibrated.size(), 8u);  // knee and ankle markers, from the static trial's clusters
