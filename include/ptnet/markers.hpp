@@ -67,11 +67,9 @@ struct MarkerMap {
   std::vector<MarkerMapEntry> entries;
 };
 
-// A shipped map by name ("delaware", "plugin-gait", "common") or a map file
-// (docs/markers.md: lines "landmark = name name ...", '#' comments, "map =
-// NAME" optional; unknown landmarks are errors that list the known ones).
-MarkerMap marker_map(const std::string& name_or_path);
-std::vector<std::string> marker_map_names();  // the shipped maps
+// The shipped maps' names ("delaware", "plugin-gait", "common"); a map file
+// is docs/markers.md's "landmark = name name ..." lines.
+std::vector<std::string> marker_map_names();
 
 // ------------------------------------------------------- markers -> joints
 

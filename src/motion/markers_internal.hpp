@@ -27,6 +27,10 @@ bool is_trc_path(const std::string& path);
 // list the known ones.
 MarkerMap parse_marker_map(std::string_view text, const std::string& source);
 std::string marker_map_text(const std::string& name);  // a shipped map's file text
+// A shipped map by name ("delaware", "plugin-gait", "common") or a map file
+// (unknown landmarks are errors that list the known ones). Users name a map
+// by MotionOptions::marker_map.
+MarkerMap marker_map(const std::string& name_or_path);
 
 // The landmarks a map can name (docs/markers.md): pelvis r_asis, l_asis,
 // r_psis, l_psis, sacrum; per side (r_, l_) knee_lat, knee_med, ankle_lat,
