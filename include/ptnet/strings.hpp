@@ -6,6 +6,8 @@
 //   ptnet::lower(ptnet::trim("  Male "))      // "male"
 //   double v; ptnet::parse_number("1e3", v)  // true, v = 1000
 //   std::int64_t n; ptnet::parse_integer("1e3", n)  // false: digits only
+//   ptnet::LineReader lines(text);                  // BOM skipped, CRLF read as LF
+//   for (std::string_view l; lines.next(l);) f(l, lines.number());
 #pragma once
 
 #include <cstdint>
@@ -40,6 +42,27 @@ bool parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std:
 // option given twice the same value (compare normalised forms, as the
 // option reads them: lower case, a speed's label). Lists are short.
 std::string first_repeat(const std::vector<std::string>& items);
+// The lines of a text, numbered from 1, for every reader of text files: a
+// UTF-8 byte-order mark at the start is skipped, a line ends at LF and a CR
+// before it is dropped (LF and CRLF files read alike). Views into `text`,
+// which must outlive the reader.
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text);
+  // The next line (without its end) in `line`; false at the end of the text.
+  bool next(std::string_view& line);
+  // The number of the line last returned (0 before the first).
+  long number() const { return number_; }
+  // Lines not yet returned (a line without its LF at the end counts): a
+  // bound for what a parser reserves.
+  std::size_t lines_left() const;
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  long number_ = 0;
+};
+
 // A message as one line (how the CLI and the Python module show an error):
 // line breaks become "; ", other control bytes are escaped (\x1b), trailing
 // blanks and semicolons dropped.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 namespace ptnet {
 namespace {
@@ -109,6 +110,33 @@ std::string one_line(std::string_view text) {
   }
   while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
   return out;
+}
+
+LineReader::LineReader(std::string_view text) : text_(text) {
+  if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
+}
+
+bool LineReader::next(std::string_view& line) {
+  if (pos_ >= text_.size()) return false;
+  const std::size_t nl = text_.find('\n', pos_);
+  const std::size_t end = nl == std::string_view::npos ? text_.size() : nl;
+  line = text_.substr(pos_, end - pos_);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  pos_ = nl == std::string_view::npos ? text_.size() : nl + 1;
+  ++number_;
+  return true;
+}
+
+std::size_t LineReader::lines_left() const {
+  if (pos_ >= text_.size()) return 0;
+  std::size_t n = 0;
+  const char* p = text_.data() + pos_;
+  const char* const end = text_.data() + text_.size();
+  while (const void* nl = std::memchr(p, '\n', std::size_t(end - p))) {
+    ++n;
+    p = static_cast<const char*>(nl) + 1;
+  }
+  return n + (p < end ? 1 : 0);
 }
 
 std::string first_repeat(const std::vector<std::string>& items) {
