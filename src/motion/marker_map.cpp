@@ -131,10 +131,11 @@ std::string set_name(int set) {
   return std::string(set / kSetsPerSide == 0 ? "r_" : "l_") + kSetNames[set % kSetsPerSide];
 }
 
-std::string bounded_list(const std::vector<std::string>& items, std::size_t max_chars, std::string_view sep) {
+std::string bounded_list(const std::vector<std::string>& items, std::size_t max_chars, std::string_view sep,
+                         std::size_t item_chars) {
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const std::string item = escaped(items[i], 32, false);
+    const std::string item = escaped(items[i], item_chars, false);
     if (out.size() + item.size() > max_chars) return out + (out.empty() ? "" : std::string(sep)) + "... (" +
                                                        std::to_string(items.size() - i) + " more)";
     out += (i ? std::string(sep) : "") + item;

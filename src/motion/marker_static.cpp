@@ -97,7 +97,7 @@ StaticTrial read_static_trial(const std::string& path, const MarkerMap& map, con
   const auto missing = missing_landmarks(r, map);
   if (!missing.empty())
     throw Error::in(path, "the static trial is not of the trial's marker set: map '" + map.name +
-                              "' (which places " + trial.source + ") lacks " + bounded_list(missing, 400, "; ") +
+                              "' (which places " + trial.source + ") lacks " + bounded_list(missing, 600, "; ", 200) +
                               " in it");
   StaticTrial st;
   st.p = prepare_trial(trc, r, trial_scale(trc, r, 0, given_mpu), max_gap_s);

@@ -66,9 +66,11 @@ std::string set_name(int set);             // "r_thigh"
 // heel.left) read as the prefix r / l. "R.ASIS", "r_asis", "RightASIS" and
 // "ASIS_R" are all "rasis".
 std::string marker_key(std::string_view name);
-// The items joined with `sep`, each escaped and cut to 32 characters, the
-// whole cut to about `max_chars` with "... (N more)": names in a message.
-std::string bounded_list(const std::vector<std::string>& items, std::size_t max_chars, std::string_view sep = " ");
+// The items joined with `sep`, each escaped and cut to `item_chars`
+// characters, the whole cut to about `max_chars` with "... (N more)": names
+// in a message.
+std::string bounded_list(const std::vector<std::string>& items, std::size_t max_chars, std::string_view sep = " ",
+                         std::size_t item_chars = 32);
 
 // A map resolved against one file's markers: the marker of each landmark
 // (-1: absent) and the members of each tracking set.

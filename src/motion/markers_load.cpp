@@ -37,7 +37,7 @@ ChosenMap named_map(const Trc& trc, const std::string& wanted) {
   const auto missing = detail::missing_landmarks(c.r, c.map);
   if (!missing.empty())
     throw Error::in(trc.source, "marker map '" + escaped(c.map.name, 40, false) + "' cannot place the markers: it lacks " +
-                                    detail::bounded_list(missing, 800, "; ") + "; the file has " + markers_found(trc));
+                                    detail::bounded_list(missing, 800, "; ", 200) + "; the file has " + markers_found(trc));
   return c;
 }
 
@@ -66,7 +66,7 @@ ChosenMap choose_map(const Trc& trc, const std::string& wanted) {
   if (!problem.empty()) throw Error::in(trc.source, problem);
   throw Error::in(trc.source, "no shipped marker map (" + join(marker_map_names(), ", ") +
                                   ") places the markers (closest, " + closest->map.name + ", lacks " +
-                                  detail::bounded_list(closest_missing, 800, "; ") + "); the file has " +
+                                  detail::bounded_list(closest_missing, 800, "; ", 200) + "); the file has " +
                                   markers_found(trc) + "; describe them with a map file (docs/markers.md)");
 }
 

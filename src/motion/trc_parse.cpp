@@ -244,10 +244,10 @@ void check_rate(const Trc& trc, const std::string& source, long line) {
   const double median_step = steps[steps.size() / 2];
   auto agrees = [&](double step) { return std::abs(step * trc.rate_hz - 1) <= kRateTolerance; };
   if (agrees(mean_step) || agrees(median_step)) return;
-  const double time_rate = 1 / median_step;
+  const double time_rate = 1 / mean_step;
   const bool swapped = std::abs(trc.rate_hz * time_rate - 1) <= kRateTolerance;
   throw Error::at(source, line,
-                  "a DataRate the Time column agrees with (its steps are " + number_text(median_step) + " s: " +
+                  "a DataRate the Time column agrees with (its steps are " + number_text(mean_step) + " s: " +
                       number_text(time_rate) + " Hz)",
                   number_text(trc.rate_hz) + (swapped ? " (the frame time written as the rate?)" : ""));
 }
