@@ -101,3 +101,14 @@ TEST(CoreLineReader, ByteOrderMarkCrlfAndLineNumbers) {
   while (two.next(l)) ++n;
   EXPECT_EQ(n, 2);
 }
+
+TEST(CoreStrings, ViewsSplitAndTrimAsTheCopiesDo) {
+  std::vector<std::string_view> v;
+  ptnet::split_views(" a \t, b,,c ", ',', v);
+  EXPECT_EQ(std::vector<std::string>(v.begin(), v.end()), ptnet::split(" a \t, b,,c ", ','));
+  EXPECT_EQ(std::vector<std::string>(v.begin(), v.end()), (std::vector<std::string>{"a", "b", "", "c"}));
+  ptnet::split_blanks("  x\t\ty  z ", v);
+  EXPECT_EQ(std::vector<std::string>(v.begin(), v.end()), ptnet::split_blanks("  x\t\ty  z "));
+  EXPECT_EQ(v.size(), 3u);
+  EXPECT_EQ(ptnet::trim_view(" \tq r\r\n"), "q r");
+}

@@ -54,8 +54,11 @@ struct Trc {
   int find(std::string_view name) const;  // -1 if absent
 };
 
-// Reads a .trc file; errors are one line "walk.trc:7: expected 125 values
-// (Frame#, Time, 41 markers x 3), found 80".
+// Reads a .trc file as OpenSim's TRCFileAdapter does, and more (header
+// values padded with spaces and doubled tabs, space-separated files, blank
+// lines, CRLF: docs/markers.md); DataRate is checked against the Time
+// column. Errors are one line "walk.trc:7: expected 125 values (Frame#,
+// Time, 41 markers x 3), found 80".
 Trc read_trc(const std::string& path);
 
 // ------------------------------------------------------------ marker maps

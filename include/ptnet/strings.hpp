@@ -19,6 +19,8 @@ namespace ptnet {
 
 // Without leading and trailing blanks (space, tab, CR, LF).
 std::string trim(std::string_view s);
+// The same as a view into `s` (no copy: parsers of large files).
+std::string_view trim_view(std::string_view s);
 // ASCII lower case.
 std::string lower(std::string s);
 // Fields between `sep`, each trimmed; "" gives {""}, "a," gives {"a", ""}.
@@ -27,6 +29,12 @@ std::vector<std::string> split(std::string_view text, char sep = ',');
 std::vector<std::string> split_list(std::string_view text);
 // The words of a line between runs of blanks (space, tab, CR, LF).
 std::vector<std::string> split_blanks(std::string_view text);
+// The same as views into `text`, into `out` (cleared; its capacity reused
+// line after line by parsers of large files).
+void split_blanks(std::string_view text, std::vector<std::string_view>& out);
+// Fields between `sep` as views into `text`, each trimmed, into `out`
+// (cleared): split()'s rule without copies.
+void split_views(std::string_view text, char sep, std::vector<std::string_view>& out);
 // The items joined with `sep`.
 std::string join(const std::vector<std::string>& items, std::string_view sep = ",");
 bool ends_with(std::string_view s, std::string_view suffix);

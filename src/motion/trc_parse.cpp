@@ -36,37 +36,11 @@ constexpr double kRateTolerance = 0.02;
 
 using Cells = std::vector<std::string_view>;
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
-std::string_view trim_view(std::string_view s) {
-  while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-// The words of a line between runs of blanks (spaces, tabs).
-void words(std::string_view line, Cells& out) {
-  out.clear();
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && is_blank(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !is_blank(line[i])) ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
-  }
-}
-
 // The cells of a line: between tabs, each trimmed (a blank cell is a missing
 // value); a line without tabs: its words.
 void cells(std::string_view line, Cells& out) {
-  if (line.find('\t') == std::string_view::npos) return words(line, out);
-  out.clear();
-  for (std::size_t start = 0;;) {
-    const std::size_t tab = line.find('\t', start);
-    out.push_back(trim_view(line.substr(start, tab == std::string_view::npos ? std::string_view::npos : tab - start)));
-    if (tab == std::string_view::npos) break;
-    start = tab + 1;
-  }
+  if (line.find('\t') == std::string_view::npos) return split_blanks(line, out);
+  split_views(line, '\t', out);
 }
 
 bool equals_nocase(std::string_view a, std::string_view b) {
@@ -103,8 +77,8 @@ std::vector<std::pair<std::string_view, std::string_view>> header_pairs(std::str
                                                                        std::string_view values_line,
                                                                        const std::string& source, long n) {
   Cells names, values;
-  words(names_line, names);
-  words(values_line, values);
+  split_blanks(names_line, names);
+  split_blanks(values_line, values);
   if (names.size() != values.size()) {
     if (names_line.find('\t') == std::string_view::npos || values_line.find('\t') == std::string_view::npos)
       throw Error::at(source, n, std::to_string(names.size()) + " values, one per name of line " + std::to_string(n - 1),
@@ -138,7 +112,7 @@ Header parse_header(LineReader& lines, const std::string& source) {
   std::string_view line;
   Cells first;
   const bool any = lines.next(line);
-  if (any) words(line, first);
+  if (any) split_blanks(line, first);
   if (first.empty() || !equals_nocase(first[0], "PathFileType"))
     throw Error::at(source, 1, "PathFileType (an OpenSim .trc file)",
                     trim_view(line).empty() ? std::string("an empty line") : escaped(line.substr(0, 40)));
