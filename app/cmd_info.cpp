@@ -147,7 +147,7 @@ void print_landmarks(std::ostringstream& s, const nlohmann::ordered_json& landma
   std::string line;
   const char* label = "  landmarks         ";
   for (const auto& [k, v] : landmarks.items()) {
-    const std::string item = k + " " + v.get<std::string>();
+    const std::string item = k + ": " + v.get<std::string>();
     if (!line.empty() && line.size() + item.size() > 70) {
       s << label << line << ",\n";
       label = "                    ";
