@@ -92,32 +92,44 @@ nlohmann::ordered_json describe_bvh(const InfoCli& o) {
 }
 
 nlohmann::ordered_json describe_trc(const InfoCli& o) {
-  const Trc trc = read_trc(o.file);
+  Trc trc = read_trc(o.file);
   MotionOptions mo;
   mo.marker_map = o.marker_map;
   mo.static_markers = o.static_markers;
+  mo.units = parse_units(o.units);
+  const std::vector<std::string> names = trc.markers;
+  const int frames = trc.frames();
+  const double rate = trc.rate_hz, declared = trc.metres_per_unit;
+  const double start = trc.time_s.front(), end = trc.time_s.back();
   MarkerReport report;
-  const Motion motion = motion_from_trc(trc, mo, &report);
+  const Motion motion = motion_from_trc(std::move(trc), mo, &report);  // the samples released once used
   nlohmann::ordered_json j;
   j["file"] = o.file;
   j["format"] = "trc";
-  j["markers"] = trc.markers.size();
-  j["frames"] = trc.frames();
-  j["fps"] = trc.rate_hz;
-  j["duration_s"] = trc.time_s.back() - trc.time_s.front() + 1 / trc.rate_hz;
-  j["start_s"] = trc.time_s.front();
-  j["metres_per_unit"] = trc.metres_per_unit;
-  j["up"] = report.up_axis;
+  j["markers"] = names.size();
+  j["frames"] = frames;
+  j["fps"] = rate;
+  j["duration_s"] = end - start + 1 / rate;
+  j["start_s"] = start;
+  j["metres_per_unit"] = report.metres_per_unit;
+  j["units_declared_m"] = declared;
+  j["up"] = up_axis_name(report.up_axis);
   j["marker_map"] = report.map;
-  j["landmarks"] = report.placed;
+  nlohmann::ordered_json landmarks;
+  for (std::size_t k = 0; k < report.placed.size(); ++k) landmarks[report.placed[k]] = report.placed_by[k];
+  j["landmarks"] = landmarks;
   j["calibrated"] = report.calibrated;
   j["methods"] = report.methods;
   j["gap_filled_samples"] = report.gap_filled_frames;
+  j["rebuilt_samples"] = report.rebuilt_samples;
   j["stature_m"] = report.stature_m;
+  j["stature_from"] = report.stature_from;
+  j["upper_body_assumed"] = report.upper_body_assumed;
+  j["marker_warnings"] = report.warnings;
   j["treadmill_belt_mps"] = report.belt_speed_mps;
   j["standing_height_m"] = standing_height(motion);
   add_dynamics(j, motion);
-  j["marker_names"] = trc.markers;
+  j["marker_names"] = names;
   return j;
 }
 
@@ -128,6 +140,22 @@ nlohmann::ordered_json describe(const InfoCli& o) {
   // New file types: one branch here, one describe_<type>() above.
   throw Error::in(o.file, "unsupported file type '" + (ext.empty() ? std::string("(none)") : ext) +
                               "' (ptnet info reads .bvh, .trc and .h5)");
+}
+
+// "r_asis R.ASIS, l_asis L.ASIS, ..." a few to a line.
+void print_landmarks(std::ostringstream& s, const nlohmann::ordered_json& landmarks) {
+  std::string line;
+  const char* label = "  landmarks         ";
+  for (const auto& [k, v] : landmarks.items()) {
+    const std::string item = k + ": " + v.get<std::string>();
+    if (!line.empty() && line.size() + item.size() > 70) {
+      s << label << line << ",\n";
+      label = "                    ";
+      line.clear();
+    }
+    line += (line.empty() ? "" : ", ") + item;
+  }
+  if (!line.empty()) s << label << line << "\n";
 }
 
 void print_trc(const nlohmann::ordered_json& j) {
@@ -142,14 +170,20 @@ void print_trc(const nlohmann::ordered_json& j) {
   s << "  duration          " << std::setprecision(2) << j["duration_s"].get<double>() << " s\n";
   s << "  units             " << std::setprecision(5) << j["metres_per_unit"].get<double>() << " m per unit, up "
     << j["up"].get<std::string>() << "\n";
-  s << "  stature (est.)    " << std::setprecision(3) << j["stature_m"].get<double>() << " m\n";
+  s << "  stature (est.)    " << std::setprecision(3) << j["stature_m"].get<double>() << " m, from "
+    << j["stature_from"].get<std::string>() << "\n";
   s << "  gap-filled        " << j["gap_filled_samples"].get<int>() << " marker samples\n";
+  if (j["rebuilt_samples"].get<int>() > 0)
+    s << "  rebuilt           " << j["rebuilt_samples"].get<int>()
+      << " landmark samples on their segment's markers (gaps over the longest filled)\n";
   if (j["treadmill_belt_mps"].get<double>() > 0)
     s << "  treadmill         belt " << std::setprecision(2) << j["treadmill_belt_mps"].get<double>()
       << " m/s, removed\n";
+  print_landmarks(s, j["landmarks"]);
   for (const auto& c : j["calibrated"]) s << "  from static trial " << c.get<std::string>() << "\n";
   s << "  joints\n";
   for (const auto& m : j["methods"]) s << "    " << m.get<std::string>() << "\n";
+  for (const auto& w : j["marker_warnings"]) s << "  warning           " << w.get<std::string>() << "\n";
   print_warnings(s, j);
   std::cout << s.str();
 }
@@ -191,7 +225,7 @@ void setup(CLI::App& app) {
   cmd->add_option("--marker-map", opt->marker_map, ".trc: a shipped marker map (delaware, plugin-gait, common) or a map file");
   cmd->add_option("--static", opt->static_markers, ".trc: the static trial that calibrates missing joint markers");
   cmd->add_flag("--json", opt->json, "Machine-readable JSON on stdout");
-  cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu")
+  cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu (.trc: auto reads its Units header)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "m", "cm", "mm", "in", "cmu"}));
   cmd->add_option("--up", opt->up, "Up axis of the file: y|z")

@@ -66,6 +66,7 @@ enum class Units { automatic, m, cm, mm, in, cmu };
 enum class UpAxis { y, z };
 Units parse_units(const std::string& text);  // "auto|m|cm|mm|in|cmu"
 UpAxis parse_up_axis(const std::string& text);  // "y|z"
+const char* up_axis_name(UpAxis up);            // "y", "z"
 const char* units_name(Units units);
 
 // Metres per file unit. For Units::automatic, chosen from the rest-pose

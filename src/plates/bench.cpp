@@ -239,7 +239,7 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   r.time_s = r.table.time_s;
   const double bw = body.mass_kg() * anthropometry::kGravity;
   const ForcePlates fp = read_grf_mot(trial.plates);
-  const int up = report.up_axis == "y" ? 1 : 2;
+  const int up = report.up_axis == UpAxis::y ? 1 : 2;
   const PlateFeet pf = plate_feet(fp, lab, up, o);
   r.plates = plates_source(fp, pf, r.time_s, 1 / r.fps, bw, o);
   r.simulated = model_source(r.table, bw, false, o);
