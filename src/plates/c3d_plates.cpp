@@ -1,0 +1,178 @@
+// Force plates of a C3D file (c3d.org, "The C3D File Format User Guide",
+// FORCE_PLATFORM group): each plate's analog channels, less their ZERO
+// baseline, become the force and moments in the plate's frame (type 1:
+// force, CoP and free moment stored; 2: force and moments; 3: eight
+// sensor forces; 4: as 2 after the calibration matrix), then the centre of
+// pressure on the plate's surface and the free moment, then the lab frame
+// through the plate's corners. The plate's z axis points into the floor
+// (corner order +x+y, -x+y, -x-y, +x-y).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <Eigen/Dense>
+
+#include "plates/plates_internal.hpp"
+#include "ptnet/error.hpp"
+#include "ptnet/strings.hpp"
+
+namespace ptnet {
+namespace {
+
+using V = Eigen::Vector3d;
+
+// A plate's axes in the lab (columns x, y, z) and the centre of its surface.
+struct PlateAxes {
+  Eigen::Matrix3d r;
+  V centre;
+};
+
+PlateAxes plate_axes(const C3dPlate& p, const std::string& plate, const std::string& source) {
+  V x = p.corners[0] - p.corners[1], y = p.corners[0] - p.corners[3];
+  V z = x.cross(y);
+  if (!(z.norm() > 1e-9))
+    throw Error::in(source, plate + ": expected CORNERS that span a plane, found " + number_text(x.norm()) + " m by " +
+                                number_text(y.norm()) + " m");
+  x.normalize();
+  z.normalize();
+  y = z.cross(x);
+  PlateAxes a;
+  a.r << x, y, z;
+  a.centre = (p.corners[0] + p.corners[1] + p.corners[2] + p.corners[3]) / 4;
+  return a;
+}
+
+// Metres of a length unit, N m of a moment unit (ANALOG:UNITS); a unit
+// not named is the file's: POINT:UNITS, N x POINT:UNITS.
+double length_scale(const std::string& units, double metres) {
+  const std::string u = lower(units);
+  return u == "m" ? 1.0 : u == "cm" ? 0.01 : u == "mm" ? 0.001 : metres;
+}
+double moment_scale(const std::string& units, double metres) {
+  const std::string u = lower(units);
+  return u == "nm" || u == "n.m" ? 1.0 : u == "ncm" ? 0.01 : u == "nmm" || u == "n.mm" ? 0.001 : metres;
+}
+
+// One sample in the plate's frame: the stored force (N), the centre of
+// pressure relative to the surface's centre (m) and the free moment (N m)
+// about the plate's z.
+struct Wrench {
+  V force;
+  double x = 0, y = 0, free = 0;
+};
+
+// Forces and moments about the plate's origin O, ORIGIN the vector from O
+// to the surface's centre S (its z negative: O below the surface; stored
+// positive, as some writers do, it is negated whole, as Visual3D does):
+// the moments about S, then CoP and free moment.
+Wrench from_moments(const V& f, const V& m_origin, V origin) {
+  if (origin.z() > 0) origin = -origin;
+  const V m = m_origin + f.cross(origin);
+  Wrench w;
+  w.force = f;
+  w.x = -m.y() / f.z();
+  w.y = m.x() / f.z();
+  w.free = m.z() - w.x * f.y() + w.y * f.x();
+  return w;
+}
+
+// The plate's wrench from its channels `ch` (scaled analog values, less
+// the baseline). `ms`: N m per moment unit, `ls`: m per CoP unit (type 1).
+Wrench plate_wrench(const C3dPlate& p, const double* ch, double ms, double ls) {
+  if (p.type == 1) {
+    Wrench w;
+    w.force = V(ch[0], ch[1], ch[2]);
+    w.x = ch[3] * ls;
+    w.y = ch[4] * ls;
+    w.free = ch[5] * ms;
+    return w;
+  }
+  if (p.type == 3) {  // Fx12 Fx34 Fy14 Fy23 Fz1..Fz4; ORIGIN: a, b (sensor offsets), surface z
+    const double a = p.origin.x(), b = p.origin.y();
+    const V f(ch[0] + ch[1], ch[2] + ch[3], ch[4] + ch[5] + ch[6] + ch[7]);
+    const V m(b * (ch[4] + ch[5] - ch[6] - ch[7]), a * (-ch[4] + ch[5] + ch[6] - ch[7]),
+              b * (-ch[0] + ch[1]) + a * (ch[2] - ch[3]));
+    return from_moments(f, m, V(0, 0, p.origin.z()));
+  }
+  Eigen::Matrix<double, 6, 1> c;
+  for (int k = 0; k < 6; ++k) c[k] = ch[k];
+  if (p.type == 4) c = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(p.cal_matrix.data()) * c;  // column order
+  return from_moments(c.head<3>(), c.tail<3>() * ms, p.origin);
+}
+
+// Each channel's baseline: its mean over the ZERO frames (none: 0).
+std::vector<double> baselines(const C3d& c3d, const std::vector<int>& channels) {
+  std::vector<double> out(channels.size(), 0.0);
+  const auto [z0, z1] = c3d.plates_zero;
+  if (z0 < 1) return out;
+  const int per = c3d.analog.per_frame, s0 = (z0 - 1) * per, s1 = std::min(z1 * per, c3d.analog.samples());
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    double sum = 0;
+    for (int s = s0; s < s1; ++s) sum += c3d.analog.value(s, channels[k]);
+    out[k] = s1 > s0 ? sum / (s1 - s0) : 0.0;
+  }
+  return out;
+}
+
+void check_plate(const C3d& c3d, const C3dPlate& p, const std::string& plate) {
+  if (p.type < 1 || p.type > 4)
+    throw Error::in(c3d.source, plate + " is of type " + std::to_string(p.type) + "; ptnet reads force plates of types 1-4");
+  if (p.type == 4 && p.cal_matrix.size() != 36)
+    throw Error::in(c3d.source, plate + " is of type 4 without its 6 x 6 FORCE_PLATFORM:CAL_MATRIX");
+}
+
+// Plate `i` at every analog sample. The stored force is the reaction on
+// the subject or the action on the plate (writers differ): the sign is
+// chosen so that the plate pushes the subject up (out of its surface) over
+// the trial.
+ForcePlates::Plate plate_forces(const C3d& c3d, int i, double cop_min_n) {
+  const C3dPlate& p = c3d.plates[std::size_t(i)];
+  const std::string name = "force plate " + std::to_string(i + 1);
+  check_plate(c3d, p, name);
+  const PlateAxes axes = plate_axes(p, name, c3d.source);
+  const std::size_t n = p.channels.size(), moment = p.type == 1 ? 5 : 3;
+  const double metres = c3d.points.metres_per_unit;
+  const double ms = moment_scale(c3d.analog.units[std::size_t(p.channels[moment])], metres);
+  const double ls = length_scale(c3d.analog.units[std::size_t(p.channels[3])], metres);
+  const std::vector<double> base = baselines(c3d, p.channels);
+  std::vector<Wrench> w(std::size_t(c3d.analog.samples()));
+  double vertical_sum = 0;
+  std::vector<double> ch(n);
+  for (std::size_t s = 0; s < w.size(); ++s) {
+    for (std::size_t k = 0; k < n; ++k) ch[k] = c3d.analog.value(int(s), p.channels[k]) - base[k];
+    w[s] = plate_wrench(p, ch.data(), ms, ls);
+    vertical_sum += w[s].force.z();
+  }
+  const double sign = vertical_sum > 0 ? -1.0 : 1.0;  // +z is into the floor
+  ForcePlates::Plate out;
+  out.prefix = "plate" + std::to_string(i + 1) + "_";
+  const V nan = V::Constant(NAN);
+  for (const Wrench& x : w) {
+    out.force_n.push_back(sign * axes.r * x.force);
+    const bool loaded = -sign * x.force.z() >= cop_min_n;
+    out.cop_m.push_back(loaded ? V(axes.centre + axes.r * V(x.x, x.y, 0)) : nan);
+    out.free_moment_nm.push_back(loaded ? V(sign * x.free * axes.r.col(2)) : nan);
+  }
+  return out;
+}
+
+}  // namespace
+
+ForcePlates plates_from_c3d(const C3d& c3d, double cop_min_n) {
+  if (!c3d.plates_problem.empty()) throw Error::in(c3d.source, c3d.plates_problem);
+  if (c3d.plates.empty()) throw Error::in(c3d.source, "no force plates (FORCE_PLATFORM:USED is 0 or absent)");
+  if (c3d.analog.samples() == 0) throw Error::in(c3d.source, "no analog samples for the force plates");
+  ForcePlates fp;
+  fp.source = c3d.source;
+  const double t0 = (c3d.first_frame - 1) / c3d.points.rate_hz;
+  for (int s = 0; s < c3d.analog.samples(); ++s) fp.time_s.push_back(t0 + s / c3d.analog.rate_hz);
+  for (int i = 0; i < int(c3d.plates.size()); ++i) fp.plates.push_back(plate_forces(c3d, i, cop_min_n));
+  return fp;
+}
+
+ForcePlates read_force_plates(const std::string& path, double cop_min_n) {
+  if (lower(std::filesystem::path(path).extension().string()) == ".c3d") return plates_from_c3d(read_c3d(path), cop_min_n);
+  return read_grf_mot(path);
+}
+
+}  // namespace ptnet
