@@ -282,7 +282,7 @@ void setup(CLI::App& app) {
                          "how each joint was placed; .c3d: markers, analog channels, force plates) or a dataset");
   cmd->add_option("file", opt->file, "Motion file (.bvh, .trc, .c3d) or dataset (.h5)")->required();
   cmd->add_option("--marker-map", opt->marker_map, ".trc, .c3d: a shipped marker map (delaware, plugin-gait, common) or a map file");
-  cmd->add_option("--static", opt->static_markers, ".trc, .c3d: the static trial that calibrates missing joint markers");
+  cmd->add_option("--static", opt->static_markers, ".trc, .c3d: the static trial (a .trc file) that calibrates missing joint markers");
   cmd->add_flag("--json", opt->json, "Machine-readable JSON on stdout");
   cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu")
       ->capture_default_str()

@@ -77,7 +77,7 @@ struct C3d {
 
 // Reads a C3D file. A file that is not one, truncated, or whose counts
 // do not fit its size is an Error of one line ("trial.c3d: expected 324
-// frames of 1464 bytes from byte 16384, found 402112 bytes (a truncated
+// frames of 2288 bytes from byte 16384, found 402112 bytes (a truncated
 // file?)"); every count is checked against the file's size before anything
 // is allocated.
 C3d read_c3d(const std::string& path);
