@@ -211,6 +211,9 @@ TEST(C3dPlates, PlatesThatCannotBeReadAreOneLineErrors) {
   s.plates[0].corners[1] = s.plates[0].corners[0];
   EXPECT_NE(error(s).find("force plate 1: expected CORNERS that span a plane"), std::string::npos) << error(s);
   s = plate_file(2, load, true, -40);
+  s.analog[6 + 1] = NAN;  // sample 1, channel C2
+  EXPECT_EQ(error(s), "p.c3d: force plate 1: expected numbers in channel 'C2', found nan at analog sample 1");
+  s = plate_file(2, load, true, -40);
   s.plates.clear();
   EXPECT_EQ(error(s), "p.c3d: no force plates (FORCE_PLATFORM:USED is 0 or absent)");
 }

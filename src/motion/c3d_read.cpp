@@ -13,7 +13,6 @@
 #include <string>
 
 #include "motion/c3d_internal.hpp"
-#include "motion/markers_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"

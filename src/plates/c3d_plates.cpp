@@ -143,7 +143,13 @@ ForcePlates::Plate plate_forces(const C3d& c3d, int i, double cop_min_n, PlateRa
   double vertical_sum = 0;
   std::vector<double> ch(n);
   for (std::size_t s = 0; s < w.size(); ++s) {
-    for (std::size_t k = 0; k < n; ++k) ch[k] = c3d.analog.value(int(s), p.channels[k]) - base[k];
+    for (std::size_t k = 0; k < n; ++k) {
+      ch[k] = c3d.analog.value(int(s), p.channels[k]) - base[k];
+      if (!std::isfinite(ch[k]))
+        throw Error::in(c3d.source, name + ": expected numbers in channel " +
+                                        escaped(c3d.analog.labels[std::size_t(p.channels[k])]) + ", found " +
+                                        number_text(ch[k]) + " at analog sample " + std::to_string(s));
+    }
     w[s] = plate_wrench(p, ch.data(), ms, ls);
     vertical_sum += w[s].force.z();
   }

@@ -29,7 +29,7 @@ struct ForcePlates {
     std::string prefix;
     std::vector<Eigen::Vector3d> force_n;  // [N]
     std::vector<Eigen::Vector3d> cop_m;    // [N]
-    std::vector<Eigen::Vector3d> free_moment_nm;  // [N] C3D only (empty from .mot); NaN where the CoP is
+    std::vector<Eigen::Vector3d> free_moment_nm;  // [N] C3D only (empty from .mot); NaN where cop_m is
   };
   std::vector<double> time_s;  // [N], increasing
   std::vector<Plate> plates;   // [P]
