@@ -288,6 +288,11 @@ TEST(C3d, MalformedFilesAreOneLineErrors) {
   b = img.bytes;
   put16(b, after_name(img, "USED") + 4, 300);
   EXPECT_EQ(error_of(b), "bad.c3d: expected POINT:USED equal to the header's word 2, found 300 against 3");
+  // No points and no analog channels: frames of nothing, however many.
+  C3dSpec empty;
+  empty.frames = 3;
+  EXPECT_EQ(error_of(ptnet::test::write_c3d(empty).bytes),
+            "bad.c3d: expected points or analog channels, found neither (POINT:USED and the analog count 0)");
   // The header's analog count not a multiple of the channels.
   b = img.bytes;
   put16(b, 4, 5);

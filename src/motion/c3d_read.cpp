@@ -41,6 +41,9 @@ Error bad(const std::string& source, const std::string& expected, const std::str
   return Error::in(source, "expected " + expected + ", found " + found);
 }
 
+// A stored number as a whole number; `fallback` when it is none in +-2^31.
+long whole(double v, long fallback) { return std::isfinite(v) && std::abs(v) < 2147483648.0 ? long(v) : fallback; }
+
 C3dFormat format_of(std::string_view bytes, const std::string& source, std::size_t& param_start) {
   if (bytes.size() < kC3dBlock)
     throw bad(source, "a C3D header of 512 bytes", std::to_string(bytes.size()) + " bytes");
@@ -71,7 +74,7 @@ void read_frames(const C3dBytes& b, const C3dParams& p, Layout& l) {
   l.frames = p.count("POINT", "FRAMES", last >= l.first ? last - l.first + 1 : -1);
   const std::vector<double> start = p.numbers("TRIAL", "ACTUAL_START_FIELD"), end = p.numbers("TRIAL", "ACTUAL_END_FIELD");
   auto field = [](const std::vector<double>& v) {
-    auto word = [](double x) { return long(x < 0 ? x + 65536 : x); };
+    auto word = [](double x) { return whole(x < 0 ? x + 65536 : x, -1); };
     return word(v[0]) + 65536 * word(v[1]);
   };
   if (l.frames == 65535 && start.size() == 2 && end.size() == 2 && field(end) >= field(start) && field(start) > 0) {
@@ -80,7 +83,7 @@ void read_frames(const C3dBytes& b, const C3dParams& p, Layout& l) {
   } else if (l.frames == 65535 && p.find("POINT", "LONG_FRAMES")) {
     l.frames = p.count("POINT", "LONG_FRAMES", -1);
   }
-  if (l.frames < 1 || l.first < 1)
+  if (l.frames < 1 || l.first < 1 || l.first > 2147483647 - l.frames)
     throw bad(b.source(), "at least one frame (POINT:FRAMES) from a first frame >= 1",
               std::to_string(l.frames) + " frames from frame " + std::to_string(l.first));
 }
@@ -115,6 +118,7 @@ Layout read_layout(const C3dBytes& b, const C3dParams& p) {
   l.per_frame = l.channels ? l.analog_per_frame / l.channels : 0;
   l.value_bytes = l.scale < 0 ? 4 : 2;
   l.frame_bytes = std::size_t(4 * l.points + l.analog_per_frame) * l.value_bytes;
+  if (l.frame_bytes == 0) throw bad(b.source(), "points or analog channels", "neither (POINT:USED and the analog count 0)");
   const std::uint64_t need = std::uint64_t(l.frames) * l.frame_bytes;  // < 2^32 x 2^21
   if (l.data > b.size() || need > b.size() - l.data)
     throw bad(b.source(), std::to_string(l.frames) + " frames of " + std::to_string(l.frame_bytes) + " bytes from byte " +
@@ -263,7 +267,7 @@ std::string read_plates(const C3dParams& p, double metres, int channels, std::ve
     return "FORCE_PLATFORM:CHANNEL holds " + std::to_string(channel.size()) + " values for " + n;
   for (long i = 0; i < used; ++i) {
     C3dPlate plate;
-    plate.type = int(type[std::size_t(i)]);
+    plate.type = int(std::clamp(whole(type[std::size_t(i)], 0), -1000L, 1000L));
     for (std::size_t k = 0; k < 4; ++k)
       for (std::size_t a = 0; a < 3; ++a) plate.corners[k][long(a)] = corners[std::size_t(12 * i) + 3 * k + a] * metres;
     for (std::size_t a = 0; a < 3; ++a) plate.origin[long(a)] = origin[std::size_t(3 * i) + a] * metres;
