@@ -208,7 +208,7 @@ void bind_motion_files(py::module_& m) {
         py::arg("path"), py::kw_only(), py::arg("fps") = kFps, py::arg("marker_map") = "",
         py::arg("static") = "", py::arg("max_gap_s") = MotionOptions{}.max_gap_s,
         py::arg("remove_belt") = MotionOptions{}.remove_belt, py::arg("units") = "auto", py::arg("up") = "y",
-        "Reads a motion file onto the canonical joints: BVH (units, up as read_bvh) or OpenSim markers (.trc: "
+        "Reads a motion file onto the canonical joints: BVH (units, up as read_bvh) or markers (OpenSim .trc, C3D .c3d: "
         "marker_map a shipped map's name or a map file, '' chooses; static the standing trial that calibrates "
         "missing joint markers; gaps up to max_gap_s filled), resampled to fps (<= 0 keeps the file's), "
         "grounded, a treadmill belt removed (remove_belt).");

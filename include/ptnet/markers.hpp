@@ -60,6 +60,9 @@ struct Trc {
 // column. Errors are one line "walk.trc:7: expected 125 values (Frame#,
 // Time, 41 markers x 3), found 80".
 Trc read_trc(const std::string& path);
+// The markers of a .trc file (read_trc) or of a .c3d file (its points,
+// read_c3d in ptnet/c3d.hpp), chosen by the extension (any case).
+Trc read_markers(const std::string& path);
 
 // ------------------------------------------------------------ marker maps
 

@@ -55,7 +55,9 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
     g.name = get(c_trial);
     if (g.name.empty()) throw Error::at(csv, row.line, "a trial name", "an empty field");
     g.markers = path(get(c_markers));
-    g.plates = path(get(c_plates));
+    g.plates = path(get(c_plates));  // "": the markers' own (a .c3d file's plates)
+    if (g.plates.empty() && lower(fs::path(g.markers).extension().string()) != ".c3d")
+      throw Error::at(csv, row.line, "a plates file (or markers in a .c3d file, which holds its plates)", "an empty field");
     g.static_markers = path(get(c_static));
     g.marker_map = get(c_map);
     if (!get(c_cover).empty()) try {
@@ -217,7 +219,7 @@ void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, double c
 }  // namespace
 
 GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions& o) {
-  const Trc trc = read_trc(trial.markers);
+  const Trc trc = read_markers(trial.markers);
   MotionOptions mo;
   mo.fps = o.fps > 0 ? o.fps : trc.rate_hz;
   mo.static_markers = trial.static_markers;
@@ -238,7 +240,7 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   r.table = force_table(trace, source, body);
   r.time_s = r.table.time_s;
   const double bw = body.mass_kg() * anthropometry::kGravity;
-  const ForcePlates fp = read_grf_mot(trial.plates);
+  const ForcePlates fp = read_force_plates(trial.plates.empty() ? trial.markers : trial.plates, o.contact_n);
   const int up = report.up_axis == UpAxis::y ? 1 : 2;
   const PlateFeet pf = plate_feet(fp, lab, up, o);
   r.plates = plates_source(fp, pf, r.time_s, 1 / r.fps, bw, o);

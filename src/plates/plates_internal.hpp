@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ptnet/c3d.hpp"
 #include "ptnet/plates.hpp"
 
 namespace ptnet {
@@ -28,6 +29,7 @@ struct ForcePlates {
     std::string prefix;
     std::vector<Eigen::Vector3d> force_n;  // [N]
     std::vector<Eigen::Vector3d> cop_m;    // [N]
+    std::vector<Eigen::Vector3d> free_moment_nm;  // [N] C3D only (empty from .mot); NaN where cop_m is
   };
   std::vector<double> time_s;  // [N], increasing
   std::vector<Plate> plates;   // [P]
@@ -36,6 +38,26 @@ struct ForcePlates {
 // From the file's text (`source` names it in errors), or read from `path`.
 ForcePlates parse_grf_mot(std::string_view text, const std::string& source);
 ForcePlates read_grf_mot(const std::string& path);
+
+// ------------------------------------------------------------ C3D plates
+
+// The samples of C3D plates: every analog sample, or one per marker frame
+// (the mean of the samples within half a frame of its time).
+enum class PlateRate { analog, markers };
+
+// The force plates of a C3D file (types 1-4; docs/formats.md, "C3D
+// files"): per plate the ground reaction force on the subject (N), its
+// centre of pressure on the plate's surface (m) and its free moment (N m,
+// along the plate's normal), in the file's lab frame, on the file's clock
+// (ptnet/c3d.hpp). The CoP and free moment are NaN where the vertical force
+// is below `cop_min_n`. Errors: no plates, a type other than 1-4, a plate
+// whose parameters cannot be used (C3d::plates_problem).
+ForcePlates plates_from_c3d(const C3d& c3d, double cop_min_n, PlateRate rate);
+// The force plates of `path`, the reader chosen by its extension: .c3d
+// (plates_from_c3d at the marker rate: at the analog rate the bench's
+// contact threshold would take a plate's millisecond spikes for contacts)
+// or OpenSim storage (read_grf_mot; cop_min_n unused).
+ForcePlates read_force_plates(const std::string& path, double cop_min_n);
 
 // The contacts of a force series (time_s and force_n of equal length).
 std::vector<Contact> find_contacts(const std::vector<double>& time_s, const std::vector<double>& force_n,
