@@ -73,7 +73,7 @@ TEST(GaitTrial, TheMarkerPathRecoversTheSkeletonItWasMadeOn) {
     for (int j = 0; j < ptnet::kJointCount; ++j)
       ASSERT_EQ(loaded.frames[std::size_t(t)][j], m.frames[std::size_t(t)][j]) << t << " " << j;
   EXPECT_EQ(r.map, "delaware");
-  EXPECT_EQ(r.up_axis, "y");
+  EXPECT_EQ(r.up_axis, ptnet::UpAxis::y);
   EXPECT_EQ(r.calibrated.size(), 8u);  // knee and ankle markers, from the static trial's clusters
   EXPECT_EQ(r.gap_filled_frames, 0);
   // The documented estimate (hip centres' median height above the foot
@@ -120,7 +120,7 @@ TEST(GaitTrial, TheBenchMeetsWhatThePhysicsImplies) {
   const ptnet::GaitTrialResult& r = bench();
   const ptnet::ForceSource &p = r.plates, &s = r.simulated, &n = r.naive;
   ASSERT_EQ(r.time_s.size(), 151u);
-  EXPECT_EQ(r.coverage, "all");  // a treadmill: the plates see every step
+  EXPECT_EQ(r.coverage, ptnet::PlateCoverage::all);  // a treadmill: the plates see every step
   EXPECT_EQ(r.flight_frames, 0);
   int whole = 0;
   for (const auto& c : p.contacts) whole += c.whole;

@@ -186,10 +186,10 @@ ForceSource model_source(const ForceTable& table, double bw, bool naive, const P
 // that the plates do not see (their foot loaded on a plate in under half of
 // the contact's frames: a foot beside the plates, on a box, ...), whole, so
 // that no contact is cut where the two disagree on its ends. A stance
-// carries kStanceBw at its peak; a lighter contact (a swing foot grazing
-// the floor) is the simulator's to answer for, and stays compared.
-void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, double contact_bw, double bw) {
-  constexpr double kStanceBw = 0.3;
+// carries CompareOptions::stance_bw at its peak; a lighter contact (a swing
+// foot grazing the floor) is the simulator's to answer for, and stays compared.
+void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, const detail::CompareOptions& co) {
+  const double contact_bw = co.contact_bw, bw = co.weight_n;
   constexpr double kCarriedBw = 0.02;
   const std::size_t T = r.time_s.size();
   std::vector<bool> seen(T, true);
@@ -202,7 +202,7 @@ void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, double c
         frames.push_back(t);
         on_plate += r.plates.foot_bw[t][std::size_t(c.foot)] > contact_bw;
       }
-    if (frames.empty() || 2 * on_plate >= int(frames.size()) || c.peak_n < kStanceBw * bw) continue;
+    if (frames.empty() || 2 * on_plate >= int(frames.size()) || c.peak_n < co.stance_bw * bw) continue;
     missed = true;
     for (std::size_t t : frames) seen[t] = false;
   }
@@ -249,7 +249,8 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   detail::CompareOptions co;
   co.flight_bw = o.flight_bw;
   co.contact_bw = o.contact_n / bw;
-  choose_compared_frames(r, trial.coverage, co.contact_bw, bw);
+  co.weight_n = bw;
+  choose_compared_frames(r, trial.coverage, co);
   detail::compare_with_plates(r.simulated, r.plates, r.time_s, r.compared, co);
   detail::compare_with_plates(r.naive, r.plates, r.time_s, r.compared, co);
   for (std::size_t t = 0; t < r.time_s.size(); ++t) {

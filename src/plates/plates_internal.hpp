@@ -76,10 +76,15 @@ std::vector<double> resample_box(const std::vector<double>& t, const std::vector
 struct CompareOptions {
   double flight_bw = 0.05;   // flight: the total force below this
   double contact_bw = 0.03;  // single stance: one foot above this, the other not
+  // A stance carries this at its peak; a lighter contact (a swing foot
+  // grazing the floor, a seated foot resting) is not one.
+  double stance_bw = 0.3;
+  double weight_n = 0;  // the body's weight, N
 };
 // Fills s's figures against `plates` (PhysicsBenchOptions, ForceSource)
 // over the frames `compared` marks ([T]): a stride counts when all its
-// frames are compared, a contact when the plates saw it whole.
+// frames are compared, a contact when it is a stance that the plates saw
+// whole and every frame of it is compared.
 void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::vector<double>& time_s,
                          const std::vector<bool>& compared, const CompareOptions& options);
 
