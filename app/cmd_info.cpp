@@ -2,6 +2,7 @@
 //
 //   ptnet info walk.bvh            # joints, frames, fps, units, height, mapping
 //   ptnet info walk.bvh --json     # the same, machine-readable
+//   ptnet info trial.c3d           # markers, frames, analog channels, force plates, the writer
 //
 // One describe function per file type; main dispatch in describe().
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "ptnet/c3d.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/data.hpp"
 #include "ptnet/markers.hpp"
@@ -92,31 +94,96 @@ nlohmann::ordered_json describe_bvh(const InfoCli& o) {
 }
 
 nlohmann::ordered_json describe_trc(const InfoCli& o) {
-  const Trc trc = read_trc(o.file);
+  Trc trc = read_trc(o.file);
+  MotionOptions mo;
+  mo.marker_map = o.marker_map;
+  mo.static_markers = o.static_markers;
+  mo.units = parse_units(o.units);
+  const std::vector<std::string> names = trc.markers;
+  const int frames = trc.frames();
+  const double rate = trc.rate_hz, declared = trc.metres_per_unit;
+  const double start = trc.time_s.front(), end = trc.time_s.back();
+  MarkerReport report;
+  const Motion motion = motion_from_trc(std::move(trc), mo, &report);  // the samples released once used
+  nlohmann::ordered_json j;
+  j["file"] = o.file;
+  j["format"] = "trc";
+  j["markers"] = names.size();
+  j["frames"] = frames;
+  j["fps"] = rate;
+  j["duration_s"] = end - start + 1 / rate;
+  j["start_s"] = start;
+  j["metres_per_unit"] = report.metres_per_unit;
+  j["units_declared_m"] = declared;
+  j["up"] = up_axis_name(report.up_axis);
+  j["marker_map"] = report.map;
+  nlohmann::ordered_json landmarks;
+  for (std::size_t k = 0; k < report.placed.size(); ++k) landmarks[report.placed[k]] = report.placed_by[k];
+  j["landmarks"] = landmarks;
+  j["calibrated"] = report.calibrated;
+  j["methods"] = report.methods;
+  j["gap_filled_samples"] = report.gap_filled_frames;
+  j["rebuilt_samples"] = report.rebuilt_samples;
+  j["stature_m"] = report.stature_m;
+  j["stature_from"] = report.stature_from;
+  j["upper_body_assumed"] = report.upper_body_assumed;
+  j["marker_warnings"] = report.warnings;
+  j["treadmill_belt_mps"] = report.belt_speed_mps;
+  j["standing_height_m"] = standing_height(motion);
+  add_dynamics(j, motion);
+  j["marker_names"] = names;
+  return j;
+}
+
+// A C3D file: what it holds (the number format, points, analog channels,
+// force plates, the system that wrote it), then, when its markers place the
+// canonical joints, how (as for a .trc file); else why not.
+nlohmann::ordered_json describe_c3d(const InfoCli& o) {
+  const C3d c = read_c3d(o.file);
+  const Trc& trc = c.points;
+  nlohmann::ordered_json j;
+  j["file"] = o.file;
+  j["format"] = "c3d";
+  j["number_format"] = c3d_format_name(c.format);
+  j["storage"] = c.float_storage ? "float" : "integer";
+  j["written_by"] = c.manufacturer;
+  j["markers"] = trc.markers.size();
+  j["frames"] = trc.frames();
+  j["first_frame"] = c.first_frame;
+  j["fps"] = trc.rate_hz;
+  j["start_s"] = trc.time_s.front();
+  j["duration_s"] = trc.frames() / trc.rate_hz;
+  j["units"] = c.units;
+  j["metres_per_unit"] = trc.metres_per_unit;
+  j["analog"] = {{"channels", c.analog.channels()}, {"rate_hz", c.analog.rate_hz}, {"labels", c.analog.labels}};
+  nlohmann::ordered_json plates = nlohmann::ordered_json::array();
+  for (const C3dPlate& p : c.plates) {
+    nlohmann::ordered_json corners = nlohmann::ordered_json::array();
+    for (const Eigen::Vector3d& k : p.corners) corners.push_back({k.x(), k.y(), k.z()});
+    std::vector<std::string> channels;
+    for (int ch : p.channels) channels.push_back(c.analog.labels[std::size_t(ch)]);
+    plates.push_back({{"type", p.type}, {"corners_m", corners}, {"channels", channels},
+                      {"calibration_matrix", !p.cal_matrix.empty()}});
+  }
+  j["plates"] = plates;
+  if (!c.plates_problem.empty()) j["plates_problem"] = c.plates_problem;
   MotionOptions mo;
   mo.marker_map = o.marker_map;
   mo.static_markers = o.static_markers;
   MarkerReport report;
-  const Motion motion = motion_from_trc(trc, mo, &report);
-  nlohmann::ordered_json j;
-  j["file"] = o.file;
-  j["format"] = "trc";
-  j["markers"] = trc.markers.size();
-  j["frames"] = trc.frames();
-  j["fps"] = trc.rate_hz;
-  j["duration_s"] = trc.time_s.back() - trc.time_s.front() + 1 / trc.rate_hz;
-  j["start_s"] = trc.time_s.front();
-  j["metres_per_unit"] = trc.metres_per_unit;
-  j["up"] = report.up_axis;
-  j["marker_map"] = report.map;
-  j["landmarks"] = report.placed;
-  j["calibrated"] = report.calibrated;
-  j["methods"] = report.methods;
-  j["gap_filled_samples"] = report.gap_filled_frames;
-  j["stature_m"] = report.stature_m;
-  j["treadmill_belt_mps"] = report.belt_speed_mps;
-  j["standing_height_m"] = standing_height(motion);
-  add_dynamics(j, motion);
+  try {
+    const Motion motion = motion_from_trc(trc, mo, &report);
+    j["up"] = report.up_axis;
+    j["marker_map"] = report.map;
+    j["landmarks"] = report.placed;
+    j["methods"] = report.methods;
+    j["gap_filled_samples"] = report.gap_filled_frames;
+    j["stature_m"] = report.stature_m;
+    j["standing_height_m"] = standing_height(motion);
+    add_dynamics(j, motion);
+  } catch (const Error& e) {
+    j["joints_error"] = e.what();  // the file is still described
+  }
   j["marker_names"] = trc.markers;
   return j;
 }
@@ -125,9 +192,26 @@ nlohmann::ordered_json describe(const InfoCli& o) {
   const std::string ext = lower(std::filesystem::path(o.file).extension().string());
   if (ext == ".bvh") return describe_bvh(o);
   if (ext == ".trc") return describe_trc(o);
+  if (ext == ".c3d") return describe_c3d(o);
   // New file types: one branch here, one describe_<type>() above.
   throw Error::in(o.file, "unsupported file type '" + (ext.empty() ? std::string("(none)") : ext) +
-                              "' (ptnet info reads .bvh, .trc and .h5)");
+                              "' (ptnet info reads .bvh, .trc, .c3d and .h5)");
+}
+
+// "r_asis R.ASIS, l_asis L.ASIS, ..." a few to a line.
+void print_landmarks(std::ostringstream& s, const nlohmann::ordered_json& landmarks) {
+  std::string line;
+  const char* label = "  landmarks         ";
+  for (const auto& [k, v] : landmarks.items()) {
+    const std::string item = k + ": " + v.get<std::string>();
+    if (!line.empty() && line.size() + item.size() > 70) {
+      s << label << line << ",\n";
+      label = "                    ";
+      line.clear();
+    }
+    line += (line.empty() ? "" : ", ") + item;
+  }
+  if (!line.empty()) s << label << line << "\n";
 }
 
 void print_trc(const nlohmann::ordered_json& j) {
@@ -142,20 +226,63 @@ void print_trc(const nlohmann::ordered_json& j) {
   s << "  duration          " << std::setprecision(2) << j["duration_s"].get<double>() << " s\n";
   s << "  units             " << std::setprecision(5) << j["metres_per_unit"].get<double>() << " m per unit, up "
     << j["up"].get<std::string>() << "\n";
-  s << "  stature (est.)    " << std::setprecision(3) << j["stature_m"].get<double>() << " m\n";
+  s << "  stature (est.)    " << std::setprecision(3) << j["stature_m"].get<double>() << " m, from "
+    << j["stature_from"].get<std::string>() << "\n";
   s << "  gap-filled        " << j["gap_filled_samples"].get<int>() << " marker samples\n";
+  if (j["rebuilt_samples"].get<int>() > 0)
+    s << "  rebuilt           " << j["rebuilt_samples"].get<int>()
+      << " landmark samples on their segment's markers (gaps over the longest filled)\n";
   if (j["treadmill_belt_mps"].get<double>() > 0)
     s << "  treadmill         belt " << std::setprecision(2) << j["treadmill_belt_mps"].get<double>()
       << " m/s, removed\n";
+  print_landmarks(s, j["landmarks"]);
   for (const auto& c : j["calibrated"]) s << "  from static trial " << c.get<std::string>() << "\n";
   s << "  joints\n";
   for (const auto& m : j["methods"]) s << "    " << m.get<std::string>() << "\n";
+  for (const auto& w : j["marker_warnings"]) s << "  warning           " << w.get<std::string>() << "\n";
   print_warnings(s, j);
+  std::cout << s.str();
+}
+
+void print_c3d(const nlohmann::ordered_json& j) {
+  std::ostringstream s;
+  s << std::fixed;
+  s << j["file"].get<std::string>() << ": C3D (" << j["number_format"].get<std::string>() << ", "
+    << j["storage"].get<std::string>() << " storage)\n";
+  if (!j["written_by"].get<std::string>().empty()) s << "  written by        " << j["written_by"].get<std::string>() << "\n";
+  s << "  markers           " << j["markers"].get<int>() << "\n";
+  s << "  frames            " << j["frames"].get<int>() << " from frame " << j["first_frame"].get<int>() << " ("
+    << std::setprecision(3) << j["start_s"].get<double>() << " s)\n";
+  s << "  fps               " << std::setprecision(3) << j["fps"].get<double>() << "\n";
+  s << "  duration          " << std::setprecision(2) << j["duration_s"].get<double>() << " s\n";
+  s << "  units             " << j["units"].get<std::string>() << " (" << std::setprecision(5)
+    << j["metres_per_unit"].get<double>() << " m per unit)\n";
+  s << "  analog            " << j["analog"]["channels"].get<int>() << " channels at " << std::setprecision(1)
+    << j["analog"]["rate_hz"].get<double>() << " Hz\n";
+  int n = 0;
+  for (const auto& p : j["plates"]) {
+    s << "  plate " << ++n << "           type " << p["type"].get<int>() << ", corners (m)";
+    for (const auto& k : p["corners_m"])
+      s << " (" << std::setprecision(3) << k[0].get<double>() << ", " << k[1].get<double>() << ", " << k[2].get<double>() << ")";
+    s << "\n";
+  }
+  if (j.contains("plates_problem")) s << "  plates unusable   " << j["plates_problem"].get<std::string>() << "\n";
+  if (j.contains("joints_error")) {
+    s << "  joints            not placed: " << j["joints_error"].get<std::string>() << "\n";
+  } else {
+    s << "  marker map        " << j["marker_map"].get<std::string>() << " (" << j["landmarks"].size()
+      << " landmarks), up " << j["up"].get<std::string>() << ", stature (est.) " << std::setprecision(3)
+      << j["stature_m"].get<double>() << " m\n";
+    s << "  joints\n";
+    for (const auto& m : j["methods"]) s << "    " << m.get<std::string>() << "\n";
+    print_warnings(s, j);
+  }
   std::cout << s.str();
 }
 
 void print_text(const nlohmann::ordered_json& j) {
   if (j["format"] == "trc") return print_trc(j);
+  if (j["format"] == "c3d") return print_c3d(j);
   std::ostringstream s;
   s << std::fixed;
   s << j["file"].get<std::string>() << ": BVH\n";
@@ -186,12 +313,12 @@ void setup(CLI::App& app) {
       app.add_subcommand("info",
                          "Print what a motion file holds (BVH: joints, frames, fps, units, "
                          "standing height, canonical joint mapping; .trc markers: the marker map, "
-                         "how each joint was placed) or a dataset");
-  cmd->add_option("file", opt->file, "Motion file (.bvh, .trc) or dataset (.h5)")->required();
-  cmd->add_option("--marker-map", opt->marker_map, ".trc: a shipped marker map (delaware, plugin-gait, common) or a map file");
-  cmd->add_option("--static", opt->static_markers, ".trc: the static trial that calibrates missing joint markers");
+                         "how each joint was placed; .c3d: markers, analog channels, force plates) or a dataset");
+  cmd->add_option("file", opt->file, "Motion file (.bvh, .trc, .c3d) or dataset (.h5)")->required();
+  cmd->add_option("--marker-map", opt->marker_map, ".trc, .c3d: a shipped marker map (delaware, plugin-gait, common) or a map file");
+  cmd->add_option("--static", opt->static_markers, ".trc, .c3d: the static trial (a .trc file) that calibrates missing joint markers");
   cmd->add_flag("--json", opt->json, "Machine-readable JSON on stdout");
-  cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu")
+  cmd->add_option("--units", opt->units, "File units: auto|m|cm|mm|in|cmu (.trc: auto reads its Units header)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "m", "cm", "mm", "in", "cmu"}));
   cmd->add_option("--up", opt->up, "Up axis of the file: y|z")

@@ -157,7 +157,7 @@ void setup(CLI::App& app) {
   auto* height = cmd->add_option("--height-cm", opt->height_cm, "Body height (cm); default: the performer's own")
       ->check(in_range(50, 250));
   auto* from = cmd->add_option("--from", opt->from,
-                               "One clip read from a motion file (BVH, or markers .trc) instead of generated: its\n"
+                               "One clip read from a motion file (BVH, or markers .trc, .c3d) instead of generated: its\n"
                                "canonical joints as BVH (--out)");
   auto* static_markers = cmd->add_option("--static", opt->static_markers, "--from .trc: the static trial");
   auto* map = cmd->add_option("--marker-map", opt->marker_map, "--from .trc: a shipped marker map or a map file");

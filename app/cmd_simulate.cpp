@@ -99,7 +99,7 @@ void setup(CLI::App& app) {
       "simulate",
       "Simulate every motion clip on every body (retargeted onto the body's height) on a\n"
       "pressure mat and write the HDF5 dataset (docs/formats.md; options: docs/simulate.md).");
-  cmd->add_option("--motions", c->motions, "BVH or marker (.trc) files, or folders (searched recursively for both)");
+  cmd->add_option("--motions", c->motions, "BVH or marker (.trc, .c3d) files, or folders (searched recursively for them)");
   cmd->add_option("--clips", c->clips,
                   "Clips CSV (file,subject,category,take[,metres_per_unit,up,marker_map,static]); alone: every clip it lists");
   cmd->add_flag("--embedded", c->embedded, "Procedural motions (as ptnet demo) instead of BVH files");

@@ -68,8 +68,8 @@ py::object simulate_motion(const Motion& motion, const BodySpec& spec, const Sim
   return py::make_tuple(std::move(pressure), std::move(f));
 }
 
-// ptnet.Body, the body functions and ptnet.simulate.
-void bind_bodies_and_simulate(py::module_& m) {
+// ptnet.Body and the body functions.
+void bind_bodies(py::module_& m) {
   py::class_<BodySpec>(m, "Body", "A body: sex, height (cm), weight (kg); id and role as in a bodies CSV.")
       .def(py::init([](const py::object& sex, double height_cm, double weight_kg, const std::string& id,
                        const std::string& role) {
@@ -106,7 +106,10 @@ void bind_bodies_and_simulate(py::module_& m) {
   m.def("read_bodies_csv", [](const PathArg& path) { return read_bodies_csv(path.string()); }, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
   m.def("sequence_seed", &sequence_seed, py::arg("seed"), py::arg("name"),
         "The sensor seed `ptnet simulate --seed SEED` gives sequence NAME (<motion_id>__<body_id>).");
+}
 
+// ptnet.simulate.
+void bind_simulate(py::module_& m) {
   m.def("simulate",
         [](const Motion& motion, const py::object& body, std::uint64_t seed, const std::string& placement,
            bool retarget, int rows, int cols, double pitch_m, double compliance_mm, int subsamples, bool ideal,
@@ -144,9 +147,8 @@ void bind_bodies_and_simulate(py::module_& m) {
         "Options and sensor defaults: docs/simulate.md.");
 }
 
-}  // namespace
-
-void bind_motion(py::module_& m) {
+// ptnet.Motion: its frames as a numpy view, retarget, write_bvh.
+void bind_motion_class(py::module_& m) {
   py::class_<Motion>(m, "Motion",
                      "A motion on the canonical skeleton: world joint positions (m, z up, ground z = 0) at fps.")
       .def_readonly("name", &Motion::name)
@@ -168,7 +170,10 @@ void bind_motion(py::module_& m) {
         return "<ptnet.Motion '" + mo.name + "': " + std::to_string(mo.size()) + " frames at " +
                number_text(mo.fps) + " fps>";
       });
+}
 
+// read_bvh and read_motion (BVH or .trc markers).
+void bind_motion_files(py::module_& m) {
   m.def("read_bvh",
         [](const PathArg& path, const std::string& units, const std::string& up, double fps,
            double metres_per_unit, bool keep_tpose) {
@@ -203,11 +208,14 @@ void bind_motion(py::module_& m) {
         py::arg("path"), py::kw_only(), py::arg("fps") = kFps, py::arg("marker_map") = "",
         py::arg("static") = "", py::arg("max_gap_s") = MotionOptions{}.max_gap_s,
         py::arg("remove_belt") = MotionOptions{}.remove_belt, py::arg("units") = "auto", py::arg("up") = "y",
-        "Reads a motion file onto the canonical joints: BVH (units, up as read_bvh) or OpenSim markers (.trc: "
+        "Reads a motion file onto the canonical joints: BVH (units, up as read_bvh) or markers (OpenSim .trc, C3D .c3d: "
         "marker_map a shipped map's name or a map file, '' chooses; static the standing trial that calibrates "
         "missing joint markers; gaps up to max_gap_s filled), resampled to fps (<= 0 keeps the file's), "
         "grounded, a treadmill belt removed (remove_belt).");
+}
 
+// generate_motion.
+void bind_generate(py::module_& m) {
   m.def("generate_motion",
         [](const std::string& category, int performer, int take, double seconds, std::uint64_t seed, double fps,
            double height_cm) {
@@ -228,7 +236,16 @@ void bind_motion(py::module_& m) {
         py::arg("seed") = 0, py::arg("fps") = kFps, py::arg("height_cm") = 0.0,
         "A procedural clip (walking|rom|freestyle|acting), named p<P>_<category>_t<T> as in ptnet's datasets; "
         "height_cm 0: the performer's own.");
-  bind_bodies_and_simulate(m);
+}
+
+}  // namespace
+
+void bind_motion(py::module_& m) {
+  bind_motion_class(m);
+  bind_motion_files(m);
+  bind_generate(m);
+  bind_bodies(m);
+  bind_simulate(m);
 }
 
 }  // namespace ptnet::python

@@ -15,9 +15,12 @@
 # Not users: tests/, bench/ and fuzz/, which reach private headers anyway.
 # Functions: what Universal Ctags lists as a prototype or function at
 # namespace scope (not class members, operators or macros). A call is the
-# name followed by "(" (not after "." or "->": a member's) or a reference
-# after "&" or "::", outside comments and string literals; a use in a stage
-# that declares a function of the same name itself is that stage's own.
+# name followed by "(" (not after "." or "->": a member's; not after a type,
+# which declares a variable: `MarkerMap marker_map(...)`), a reference the
+# name after "::" or after an address-of "&" (not a reference type's:
+# `const std::string& marker_map` is a parameter), outside comments and
+# string literals; a use in a stage that declares a function of the same
+# name itself is that stage's own.
 # ROOT defaults to the folder above this script.
 set -euo pipefail
 root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -96,13 +99,41 @@ for line in tags.splitlines():
     if path in owner:
         public.setdefault((path, name), set()).add(int(extra.get("line", 0)))
 
+# The token before position i of text: an identifier, or one character.
+IDENT_END = re.compile(r"\w+$")
+def token_before(text, i):
+    j = i
+    while j > 0 and text[j - 1].isspace():
+        j -= 1
+    m = IDENT_END.search(text, max(0, j - 64), j)
+    return m.group(0) if m else text[j - 1:j]
+
+# Words after which a name is an expression, not a declaration's type.
+EXPRESSION_WORDS = {"return", "throw", "else", "do", "case", "co_return", "co_yield", "co_await", "new", "delete",
+                    "and", "or", "not", "sizeof", "decltype", "noexcept"}
+def is_type_before(token):
+    """`token` ends a type (int x, MarkerMap x, std::string x): an identifier
+    that is no keyword of an expression."""
+    return bool(re.match(r"\w+$", token)) and not token[0].isdigit() and token not in EXPRESSION_WORDS
+
+def is_use(text, m):
+    """A call (the name and "(", not a declaration `Type name(args)`) or a
+    reference (`&name` taking the address, `ns::name`); not a parameter,
+    field or variable of that name (`const std::string& name`)."""
+    if m.group("call") is not None:
+        return not is_type_before(token_before(text, m.start()))
+    if m.group("ref") == "::":
+        return True
+    before = token_before(text, m.start())  # before the "&": an operand or a type ends there, else it is address-of
+    return not is_type_before(before) and before not in (")", "]", ">", "*", "&")
+
 problems = []
 for (header, name), lines in sorted(public.items()):
     stage = owner[header]
     # A call (the name and "(", not after "." or "->": a member's) or a
-    # reference (after "&" or "::"); not a field or variable of that name.
+    # reference (after "&" or "::"); is_use() keeps those that are.
     n = re.escape(name)
-    word = re.compile(r"(?<![\w.>])%s(?=\s*\()|(?:&|::)\s*%s\b" % (n, n))
+    word = re.compile(r"(?<![\w.>])(?P<call>%s)(?=\s*\()|(?P<ref>&|::)\s*%s\b(?!\s*\()" % (n, n))
     used = False
     for path, text in code.items():
         s = stage_of(path)
@@ -110,6 +141,8 @@ for (header, name), lines in sorted(public.items()):
             line = text.count("\n", 0, m.start()) + 1
             if path == header and line in lines:
                 continue  # the declaration itself
+            if not is_use(text, m):
+                continue
             if path in owner or (s != stage and s not in declared_by.get(name, set())):
                 used = True  # a public header's code, another stage, app, python, examples
                 break

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# scripts/check-sizes.sh [SRC]: the size limits of the library's sources
-# (issue 41): no function longer than 80 lines and no file longer than 450
-# lines under SRC (default: src/ beside this script), SIMD kernels included.
-# One line per breach (`src/sim/x.cpp:120: function f is 93 lines (limit
-# 80)`), then exit 1; exit 0 when every function and file is within. The
-# ctest test `check_sizes` (label unit) runs it, so CI holds the limits.
+# scripts/check-sizes.sh [DIR...]: the size limits of the project's C++
+# sources (issue 41): no function longer than 80 lines and no file longer
+# than 450 lines under each DIR (default: src/, app/ and python/ beside this
+# script: the library, the command-line tool and the Python module), SIMD
+# kernels included. One line per breach (`src/sim/x.cpp:120: function f is
+# 93 lines (limit 80)`), then exit 1; exit 0 when every function and file is
+# within. The ctest test `check_sizes` (label unit) runs it on the three,
+# so CI holds the limits.
 #
 # Functions: every C++ function definition Universal Ctags finds (free,
 # member, inline in a class or header), from its first line (the one with
@@ -13,10 +15,10 @@
 # MAX_FUNCTION_LINES and MAX_FILE_LINES override the limits.
 set -euo pipefail
 if [ $# -ge 1 ]; then
-  src=$1
+  dirs=("$@")
 else
   cd "$(dirname "$0")/.."
-  src=src
+  dirs=(src app python)
 fi
 max_function=${MAX_FUNCTION_LINES:-80}
 max_file=${MAX_FILE_LINES:-450}
@@ -24,10 +26,13 @@ if ! ctags --version 2>/dev/null | grep -q "Universal Ctags"; then
   echo "check-sizes: needs Universal Ctags as ctags (Debian: universal-ctags)" >&2
   exit 2
 fi
-[ -d "$src" ] || { echo "check-sizes: $src is not a folder" >&2; exit 2; }
-
-mapfile -t files < <(find "$src" -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name '*.cc' \) | sort)
-[ ${#files[@]} -gt 0 ] || { echo "check-sizes: no C++ sources under $src" >&2; exit 2; }
+files=()
+for dir in "${dirs[@]}"; do
+  [ -d "$dir" ] || { echo "check-sizes: $dir is not a folder" >&2; exit 2; }
+  mapfile -t found < <(find "$dir" -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name '*.cc' \) | sort)
+  [ ${#found[@]} -gt 0 ] || { echo "check-sizes: no C++ sources under $dir" >&2; exit 2; }
+  files+=("${found[@]}")
+done
 
 # Functions: name, file, line: and end: fields of ctags' tag lines (-o -).
 functions=$(ctags --languages=C++ --c++-kinds=f --fields=+ne -o - "${files[@]}" |
@@ -51,4 +56,4 @@ if [ -n "$functions$sizes" ]; then
   [ -z "$sizes" ] || echo "$sizes"
   exit 1
 fi
-echo "check-sizes: ${#files[@]} files under $src: every function <= $max_function lines, every file <= $max_file lines"
+echo "check-sizes: ${#files[@]} files under ${dirs[*]}: every function <= $max_function lines, every file <= $max_file lines"

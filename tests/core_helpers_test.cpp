@@ -1,17 +1,20 @@
 // Core's shared helpers that several stages once kept their own copies of:
 // FNV-1a 64 (digests and name-derived seeds), the binary R^2 from counts and
-// a frame's load (force, centre of pressure, contact area).
+// a frame's load (force, centre of pressure, contact area), the line reader
+// of every text format.
 // The values are pinned: they decide simulated sensor noise, recorded
 // digests and the validation split, so a change would change outputs.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/hash.hpp"
 #include "ptnet/pressure.hpp"
 #include "ptnet/sim.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 namespace {
@@ -81,3 +84,31 @@ TEST(CoreFrameLoad, ForceCentreAndAreaOfKnownFrames) {
 
 }  // namespace
 }  // namespace ptnet
+
+TEST(CoreLineReader, ByteOrderMarkCrlfAndLineNumbers) {
+  const std::string text = "\xEF\xBB\xBF" "a\tb\r\n\r\nlast";
+  ptnet::LineReader lines(text);
+  EXPECT_EQ(lines.lines_left(), 3u);
+  std::vector<std::pair<std::string, long>> got;
+  for (std::string_view l; lines.next(l);) got.emplace_back(std::string(l), lines.number());
+  EXPECT_EQ(got, (std::vector<std::pair<std::string, long>>{{"a\tb", 1}, {"", 2}, {"last", 3}}));
+  EXPECT_EQ(lines.lines_left(), 0u);
+  // A final LF ends the last line; it starts none.
+  ptnet::LineReader two("x\ny\n");
+  EXPECT_EQ(two.lines_left(), 2u);
+  std::string_view l;
+  int n = 0;
+  while (two.next(l)) ++n;
+  EXPECT_EQ(n, 2);
+}
+
+TEST(CoreStrings, ViewsSplitAndTrimAsTheCopiesDo) {
+  std::vector<std::string_view> v;
+  ptnet::split_views(" a \t, b,,c ", ',', v);
+  EXPECT_EQ(std::vector<std::string>(v.begin(), v.end()), ptnet::split(" a \t, b,,c ", ','));
+  EXPECT_EQ(std::vector<std::string>(v.begin(), v.end()), (std::vector<std::string>{"a", "b", "", "c"}));
+  ptnet::split_blanks("  x\t\ty  z ", v);
+  EXPECT_EQ(std::vector<std::string>(v.begin(), v.end()), ptnet::split_blanks("  x\t\ty  z "));
+  EXPECT_EQ(v.size(), 3u);
+  EXPECT_EQ(ptnet::trim_view(" \tq r\r\n"), "q r");
+}

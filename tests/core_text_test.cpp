@@ -1,8 +1,7 @@
 // Text inputs and names (ptnet/strings.hpp, ptnet/io.hpp): every text input
 // is UTF-8 or refused in one line naming the file and line before any of it
-// is used; a name that becomes a file name is one file name; lines are read
-// with a byte-order mark, CRLF and numbers, never the whole file at once;
-// numeric tables are read back as they are written (OpenSim storage, CSV),
+// is used; a name that becomes a file name is one file name; numeric
+// tables are read back as they are written (OpenSim storage, CSV),
 // only the columns asked for parsed; list paths resolve as the filesystem
 // does (through symbolic links), and an input that is no regular file is
 // said as what it is.
@@ -71,30 +70,23 @@ TEST(Utf8, EveryTextFileIsCheckedWhenRead) {
   EXPECT_EQ(read_text_file(d.file("ok.csv")), "\xef\xbb\xbftrial\r\ncaf\xc3\xa9\r\n");
 }
 
-TEST(Lines, ABomCrlfAndNumbersLineByLine) {
+// A table file is text like any other (read_text_file, LineReader): a
+// byte-order mark, CRLF and line numbers, a bad byte refused at its line.
+TEST(Tables, AFileIsUtf8TextWithABomCrlfAndLineNumbers) {
   TempDir d("lines");
-  std::string text = "\xef\xbb\xbf" "endheader\r\nrow 2\r\n\r\nlast";
-  write(d.file("a.mot"), text);
-  for (int from_file = 0; from_file < 2; ++from_file) {
-    LineReader in = from_file ? LineReader(d.file("a.mot")) : LineReader(text, "a.mot");
-    std::vector<std::string> lines;
-    for (std::string_view line; in.next(line);) lines.emplace_back(line);
-    EXPECT_EQ(lines, (std::vector<std::string>{"endheader", "row 2", "", "last"}));
-    EXPECT_EQ(in.number(), 4);
-  }
-  // Lines across the reader's blocks of the file, and a bad byte's line.
-  std::string many;
-  for (int i = 1; i <= 30000; ++i) many += std::to_string(i) + "\n";
-  many += "caf\xe9\n";
-  write(d.file("many.txt"), many);
-  LineReader in(d.file("many.txt"));
-  std::string_view line;
-  for (int i = 1; i <= 30000; ++i) {
-    ASSERT_TRUE(in.next(line));
-    ASSERT_EQ(line, std::to_string(i));
-  }
-  EXPECT_EQ(error_of([&] { in.next(line); }),
-            d.file("many.txt") + ":30001: expected UTF-8 text, found byte 0xE9 (Latin-1 or Windows-1252? save the file as UTF-8)");
+  write(d.file("a.csv"), "\xef\xbb\xbf" "time,fx\r\n0,1\r\n\r\n0.1,2");
+  TableReader t(d.file("a.csv"));
+  EXPECT_EQ(t.columns(), (std::vector<std::string>{"time", "fx"}));
+  EXPECT_EQ(t.rows_left(), 3u);
+  std::vector<std::vector<double>> rows;
+  for (std::vector<double> v; t.next({0, 1}, v);) rows.push_back(v);
+  EXPECT_EQ(rows, (std::vector<std::vector<double>>{{0, 1}, {0.1, 2}}));
+  EXPECT_EQ(t.line(), 4);
+  std::string many = "time,fx\n";
+  for (int i = 1; i <= 3000; ++i) many += std::to_string(i) + ",0\n";
+  write(d.file("latin1.csv"), many + "caf\xe9,1\n");
+  EXPECT_EQ(error_of([&] { TableReader bad(d.file("latin1.csv")); }),
+            d.file("latin1.csv") + ":3002: expected UTF-8 text, found byte 0xE9 (Latin-1 or Windows-1252? save the file as UTF-8)");
 }
 
 TEST(Tables, StorageAndCsvReadBackAsWritten) {

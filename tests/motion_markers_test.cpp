@@ -18,101 +18,9 @@
 #include "motion/motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/markers.hpp"
+#include "motion_markers_util.hpp"
 
-namespace {
-
-using V = Eigen::Vector3d;
-namespace fs = std::filesystem;
-
-// A .trc text: markers [F][M] in mm, lab axes Y up (NaN: a blank cell).
-std::string trc_text(const std::vector<std::string>& names, const std::vector<std::vector<V>>& frames, double rate) {
-  std::ostringstream o;
-  o << "PathFileType\t4\t(X/Y/Z)\tt.trc\nDataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\n"
-    << rate << "\t" << rate << "\t" << frames.size() << "\t" << names.size() << "\tmm\nFrame#\tTime";
-  for (const auto& n : names) o << "\t" << n << "\t\t";
-  o << "\n\t";
-  for (std::size_t m = 0; m < names.size(); ++m) o << "\tX" << m + 1 << "\tY" << m + 1 << "\tZ" << m + 1;
-  o << "\n\n";
-  o.precision(10);
-  for (std::size_t f = 0; f < frames.size(); ++f) {
-    o << f + 1 << "\t" << f / rate;
-    for (const V& p : frames[f])
-      for (int a = 0; a < 3; ++a) {
-        o << "\t";
-        if (std::isfinite(p[a])) o << p[a];
-      }
-    o << "\n";
-  }
-  return o.str();
-}
-
-std::string write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("ptnet_markers_" + std::to_string(::getpid()) + "_" + name);
-  std::ofstream(p) << text;
-  return p.string();
-}
-
-// A standing body in Delaware / gait2354 names, lab mm, Y up, facing +X,
-// its right towards +Z; knee and ankle markers included.
-struct Standing {
-  std::vector<std::string> names;
-  std::vector<V> at;
-  void add(const std::string& n, double x, double y, double z) { names.push_back(n), at.emplace_back(x, y, z); }
-  int index(const std::string& n) const { return int(std::find(names.begin(), names.end(), n) - names.begin()); }
-};
-
-Standing standing() {
-  Standing s;
-  for (int side = 0; side < 2; ++side) {
-    const double k = side == 0 ? 1 : -1;  // right: +Z
-    const std::string p = side == 0 ? "R." : "L.";
-    s.add(p + "ASIS", 120, 1000, k * 120);
-    s.add(p + "Thigh.Upper", 60, 800, k * 150);
-    s.add(p + "Thigh.Front", 110, 700, k * 110);
-    s.add(p + "Thigh.Rear", 20, 690, k * 140);
-    s.add(p + "Knee.Lat", 40, 520, k * 150);
-    s.add(p + "Knee.Med", 40, 520, k * 50);
-    s.add(p + "Shank.Upper", 60, 400, k * 140);
-    s.add(p + "Shank.Front", 90, 300, k * 100);
-    s.add(p + "Shank.Rear", 10, 310, k * 130);
-    s.add(p + "Ankle.Lat", 0, 80, k * 135);
-    s.add(p + "Ankle.Med", 0, 85, k * 65);
-    s.add(p + "Heel", -60, 40, k * 100);
-    s.add(p + "Midfoot.Sup", 80, 70, k * 90);
-    s.add(p + "Midfoot.Lat", 80, 40, k * 135);
-    s.add(p + "Toe.Lat", 160, 25, k * 130);
-    s.add(p + "Toe.Med", 170, 25, k * 70);
-    s.add(p + "Toe.Tip", 220, 20, k * 90);
-    s.add(p + "Acromium", 0, 1450, k * 190);
-  }
-  s.add("V.Sacral", -100, 1000, 0);
-  s.add("Sternum", 100, 1350, 0);
-  s.add("Top.Head", 0, 1750, 0);
-  return s;
-}
-
-// `s` moved rigidly per frame: turned about the vertical by 0.3 t rad and
-// carried 0.4 t m along X (t in s), at `rate` Hz for `frames` frames.
-std::vector<std::vector<V>> moved(const Standing& s, int frames, double rate) {
-  std::vector<std::vector<V>> out;
-  for (int f = 0; f < frames; ++f) {
-    const double t = f / rate;
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(0.3 * t, V::UnitY()).toRotationMatrix();
-    std::vector<V> frame;
-    for (const V& p : s.at) frame.push_back(r * p + V(400 * t, 0, 0));
-    out.push_back(frame);
-  }
-  return out;
-}
-
-ptnet::MotionOptions keep_rate() {
-  ptnet::MotionOptions o;
-  o.fps = 0;
-  o.remove_belt = false;
-  return o;
-}
-
-}  // namespace
+using namespace ptnet::testing;
 
 TEST(Trc, ParsesHeaderNamesRowsAndBlankCells) {
   std::vector<std::vector<V>> frames = {{V(1, 2, 3), V(4, 5, 6)}, {V(7, 8, 9), V(NAN, NAN, NAN)}};
@@ -150,6 +58,8 @@ TEST(Trc, EveryMalformedFixtureIsItsOwnOneLineError) {
       {"time_backwards.trc", ":8: expected a time after 0.01 s, found '0.000'"},
       {"truncated.trc", ": expected 5 frames (NumFrames), found 2 (a truncated file?)"},
       {"no_frames.trc", ": expected rows of Frame#, Time, X Y Z ..., found none"},
+      {"rate_mismatch.trc", ":3: expected a DataRate the Time column agrees with (its steps are 0.1 s: 10 Hz), found 60"},
+      {"header_value_count.trc", ":3: expected 5 values, one per name of line 2, found 4"},
   };
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.path().extension() == ".trc";
@@ -191,7 +101,7 @@ TEST(Markers, HipCentresFollowHarrington2007) {
   ptnet::MarkerReport report;
   const ptnet::Motion m = ptnet::motion_from_trc(trc, keep_rate(), &report);
   EXPECT_EQ(report.map, "delaware");
-  EXPECT_EQ(report.up_axis, "y");
+  EXPECT_EQ(report.up_axis, ptnet::UpAxis::y);
   // Lab (x, y, z) mm -> world (z, x, y) m. Pelvis frame of frame 0: origin
   // the ASIS midpoint (0.12, 0, 1.0) in lab m, anterior +X, right +Z.
   const double pw = 0.24, pd = 0.22;  // inter-ASIS; ASIS midpoint to the sacral marker
@@ -201,16 +111,16 @@ TEST(Markers, HipCentresFollowHarrington2007) {
   // The neck (acromia midpoint) is a reference that grounding moved alike.
   const V neck_lab(0, 1.45, 0);
   const ptnet::Pose& p = m.frames[0];
-  EXPECT_LT((p[ptnet::kRightHip] - p[ptnet::kNeck] - (world(hip_r_lab) - world(neck_lab))).norm(), 1e-9);
-  EXPECT_LT((p[ptnet::kLeftHip] - p[ptnet::kNeck] - (world(hip_l_lab) - world(neck_lab))).norm(), 1e-9);
+  EXPECT_LT((p[ptnet::kRightHip] - p[ptnet::kNeck] - (world(hip_r_lab) - world(neck_lab))).norm(), 1e-6);  // float tracks
+  EXPECT_LT((p[ptnet::kLeftHip] - p[ptnet::kNeck] - (world(hip_l_lab) - world(neck_lab))).norm(), 1e-6);
   EXPECT_LT((p[ptnet::kPelvis] - 0.5 * (p[ptnet::kLeftHip] + p[ptnet::kRightHip])).norm(), 1e-12);
   // Knees and ankles at their markers' midpoints.
   const V knee_r = 0.5 * (s.at[std::size_t(s.index("R.Knee.Lat"))] + s.at[std::size_t(s.index("R.Knee.Med"))]) / 1000;
-  EXPECT_LT((p[ptnet::kRightKnee] - p[ptnet::kNeck] - (world(knee_r) - world(neck_lab))).norm(), 1e-9);
+  EXPECT_LT((p[ptnet::kRightKnee] - p[ptnet::kNeck] - (world(knee_r) - world(neck_lab))).norm(), 1e-6);
   // Right is right: the body faces lab +X, up is lab +Y, so its left is
   // up x forward in the world.
   const V left = V::UnitZ().cross(world(V::UnitX()));
-  EXPECT_NEAR((p[ptnet::kLeftHip] - p[ptnet::kRightHip]).dot(left), 2 * (0.33 * pw + 0.0073), 1e-9);
+  EXPECT_NEAR((p[ptnet::kLeftHip] - p[ptnet::kRightHip]).dot(left), 2 * (0.33 * pw + 0.0073), 1e-6);
 }
 
 TEST(Markers, AStaticTrialRebuildsMissingKneeAndAnkleMarkers) {
@@ -247,23 +157,36 @@ TEST(Markers, AStaticTrialRebuildsMissingKneeAndAnkleMarkers) {
 }
 
 TEST(Markers, ShortGapsAreFilledSmoothlyAndLongOnesNamed) {
-  // One marker on a smooth path at 100 Hz, a gap of 6 samples.
-  std::vector<std::vector<V>> frames;
-  auto path = [](double t) { return V(1000 * std::sin(t), 500 + 100 * t * t, 20 * t); };
-  for (int f = 0; f < 60; ++f) frames.push_back({path(f / 100.0)});
-  for (int f = 20; f < 26; ++f) frames[std::size_t(f)][0] = V(NAN, NAN, NAN);
-  ptnet::Trc trc = ptnet::parse_trc(trc_text({"M"}, frames, 100), "g.trc");
-  EXPECT_EQ(ptnet::detail::fill_gaps(trc, 0, 0.1), 6);
-  for (int f = 20; f < 26; ++f) EXPECT_LT((trc.at(f, 0) - path(f / 100.0)).norm(), 0.5) << f;  // mm
-  // Eleven samples (0.11 s) is beyond 0.1 s.
-  for (int f = 30; f < 41; ++f) frames[std::size_t(f)][0] = V(NAN, NAN, NAN);
-  ptnet::Trc long_gap = ptnet::parse_trc(trc_text({"M"}, frames, 100), "g.trc");
+  // One marker on a smooth path at 100 Hz (metres, z up), a gap of 6 samples.
+  auto path = [](double t) { return Eigen::Vector3f(float(std::sin(t)), float(0.5 + 0.1 * t * t), float(0.02 * t)); };
+  ptnet::detail::Tracks t;
+  t.frames = 60;
+  t.rate_hz = 100;
+  t.names = {"M"};
+  t.xyz.emplace_back();
+  for (int f = 0; f < 60; ++f) t.xyz[0].push_back(path(f / 100.0));
+  for (int f = 20; f < 26; ++f) t.xyz[0][std::size_t(f)] = Eigen::Vector3f::Constant(NAN);
+  std::vector<ptnet::detail::Gap> long_gaps;
+  EXPECT_EQ(ptnet::detail::fill_gaps(t, 0, 0.1, &long_gaps), 6);
+  EXPECT_TRUE(long_gaps.empty());
+  for (int f = 20; f < 26; ++f) EXPECT_LT((t.at(f, 0) - path(f / 100.0)).norm(), 0.5e-3) << f;
+  // Eleven samples (0.11 s) is beyond 0.1 s: left as a long gap.
+  for (int f = 30; f < 41; ++f) t.xyz[0][std::size_t(f)] = Eigen::Vector3f::Constant(NAN);
+  EXPECT_EQ(ptnet::detail::fill_gaps(t, 0, 0.1, &long_gaps), 0);
+  ASSERT_EQ(long_gaps.size(), 1u);
+  EXPECT_EQ(long_gaps[0].begin, 30);
+  EXPECT_EQ(long_gaps[0].end, 41);
+  // In a trial, a long gap of a marker no segment can rebuild is named.
+  const Standing s = standing();
+  auto frames = moved(s, 60, 100);
+  const int acromion = s.index("R.Acromium");
+  for (int f = 30; f < 41; ++f) frames[std::size_t(f)][std::size_t(acromion)] = V(NAN, NAN, NAN);
   try {
-    ptnet::detail::fill_gaps(long_gap, 0, 0.1);
+    ptnet::motion_from_trc(ptnet::parse_trc(trc_text(s.names, frames, 100), "g.trc"), keep_rate());
     ADD_FAILURE();
   } catch (const ptnet::Error& e) {
-    // The first gap is filled; the second is named.
-    EXPECT_STREQ(e.what(), "g.trc: marker 'M' is missing in frames 31-41 (0.300-0.400 s); gaps up to 0.1 s are filled");
+    EXPECT_STREQ(e.what(), "g.trc: marker 'R.Acromium' (r_shoulder) is missing in frames 31-41 (0.300-0.400 s); "
+                           "gaps up to 0.1 s are filled");
   }
 }
 

@@ -5,10 +5,18 @@
 // a digest: a refactoring must leave them all as they are.
 //
 // Clips: a procedural walk and range of motion (always), a kneeling sway
-// built from the body (knee, hand and sole contact; always), and two real
-// CMU clips from the shared motion-capture folder (PTNET_SHARED_MOCAP,
+// built from the body (knee, hand and sole contact; always), two real CMU
+// clips from the shared motion-capture folder (PTNET_SHARED_MOCAP,
 // cmake/ptnet.cmake: a walk that leaves the mat; squats and jogging;
-// skipped when the folder is absent). Bodies: a light short and a heavy
+// skipped when the folder is absent) and their committed twins, which run
+// in every clone: the synthetic treadmill walk of tests/data/gait
+// (scripts/make-gait-trial.py) read as markers through a clips CSV with its
+// static trial (the marker path, the static calibration, the belt found and
+// removed; 2.8 m of walking, so it leaves the fixed mat as 002_01 does), and
+// the same walk's lab positions written as a BVH file in the CMU clips'
+// units (0.05644 m, y up) at 120 frames/s and read back through a clips CSV
+// (the BVH reader, the units, the 120 -> 30 resampling, the belt found and
+// removed on a BVH clip, as for 14_06). Bodies: a light short and a heavy
 // tall one. Options: the defaults with sensor noise (seed 7); the mat
 // following the body with an ideal sensor and 4 x 4 samples per cell; no
 // moment balance with 2 x 2 samples and a 30 mm band. Each case runs
@@ -40,12 +48,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include "core/hash.hpp"
 #include "ptnet/body.hpp"
+#include "ptnet/markers.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/sim.hpp"
 #include "ptnet/simulate_dataset.hpp"
@@ -92,6 +103,18 @@ const std::vector<Golden> kGolden = {
   {"14_06/m196/default", "5f7aae9084320148", "0443dcd5aef7647d"},
   {"14_06/m196/follow_ideal_s4", "66a142dd0dfb66d1", "947638c1a0411883"},
   {"14_06/m196/nobalance_s2", "bfd87d153f938f86", "147c323549c911aa"},
+  {"trc_walk/f150/default", "adcff342864bb19b", "c72302c73157def6"},
+  {"trc_walk/f150/follow_ideal_s4", "1d1878ca3e1badf5", "a35a6a04badb3efa"},
+  {"trc_walk/f150/nobalance_s2", "17137ec7f5efa070", "3d498817b0423a3a"},
+  {"trc_walk/m196/default", "9262ba1be32f0959", "36f78fdc7d8c9e65"},
+  {"trc_walk/m196/follow_ideal_s4", "1d6b940e8d35600b", "3e4aeefd0ab825b5"},
+  {"trc_walk/m196/nobalance_s2", "0448b9f726df79a8", "b7225c01cf32fa41"},
+  {"bvh_treadmill/f150/default", "70604afb5131a741", "135d97b035f49002"},
+  {"bvh_treadmill/f150/follow_ideal_s4", "462cb3cabf527531", "b491fd10fd1d7120"},
+  {"bvh_treadmill/f150/nobalance_s2", "31500d61c327bf54", "b9911385169a1fcb"},
+  {"bvh_treadmill/m196/default", "05e4fbb6a0bbbf2f", "50c526ca661761b4"},
+  {"bvh_treadmill/m196/follow_ideal_s4", "a9b2f63fe57936af", "093444eda10e0ec8"},
+  {"bvh_treadmill/m196/nobalance_s2", "b257cf7bc5914669", "fdb42c4b80ffb434"},
 };
 // clang-format on
 
@@ -269,6 +292,65 @@ TEST(SimGolden, RealClips) {
     if (std::string(file) == "002_01.bvh")
       EXPECT_GT(x.off_mat, 0) << "the walk leaves the fixed mat";
   }
+}
+
+// The committed trial as a clip of a clips CSV (absolute paths), loaded as
+// simulate_dataset loads it.
+Motion clip_of_csv(const std::string& dir, const std::string& file, const std::string& csv_text) {
+  const std::string csv = dir + "/" + file + ".csv";
+  std::ofstream(csv) << csv_text;
+  const std::vector<ClipSource> clips = clips_from_files({dir + "/" + file}, csv, {});
+  EXPECT_EQ(clips.size(), 1u) << file;
+  return load_clip(clips.at(0), 30);
+}
+
+// The BVH of `m` (canonical skeleton, centimetres) in units of `metres` m.
+Bvh in_units(Bvh b, double metres) {
+  const double k = 0.01 / metres;
+  for (BvhJoint& j : b.joints) {
+    j.offset *= k;
+    j.end_site *= k;
+    for (std::size_t c = 0; c < j.channels.size(); ++c)
+      if (j.channels[c] == Channel::Xposition || j.channels[c] == Channel::Yposition ||
+          j.channels[c] == Channel::Zposition)
+        for (int f = 0; f < b.frames(); ++f)
+          b.values[std::size_t(f) * std::size_t(b.channel_count) + std::size_t(j.first_channel) + c] *= k;
+  }
+  return b;
+}
+
+double pelvis_travel(const Motion& m) {
+  return (m.frames.back()[kPelvis] - m.frames.front()[kPelvis]).head<2>().norm();
+}
+
+TEST(SimGolden, CommittedTwinsOfTheRealClips) {
+  const std::string gait = std::string(PTNET_TEST_DATA) + "/gait";
+  const std::string tmp =
+      (std::filesystem::temp_directory_path() / ("ptnet_golden_" + std::to_string(::getpid()))).string();
+  std::filesystem::create_directories(tmp);
+  std::filesystem::copy_file(gait + "/walk.trc", tmp + "/walk.trc");
+  // The marker file, its static trial named in the clips CSV.
+  const Motion trc = clip_of_csv(tmp, "walk.trc",
+                                 "file,subject,category,take,static\nwalk.trc,s1,walking,1," + gait +
+                                     "/walk_static.trc\n");
+  EXPECT_GT(pelvis_travel(trc), 2.5) << "the belt removed, the body walks 2.8 m";
+  const Coverage walk = check_clip("trc_walk", trc);
+  EXPECT_GT(walk.off_mat, 0) << "the walk leaves the fixed mat";
+  EXPECT_GT(walk.both_feet, 0);
+  // The same walk's lab positions (the belt kept) at 120 frames/s, as a CMU
+  // BVH file: 0.05644 m units, y up.
+  MotionOptions o;
+  o.fps = 120;
+  o.remove_belt = false;
+  o.static_markers = gait + "/walk_static.trc";
+  const Motion lab = retarget(motion_from_trc(read_trc(gait + "/walk.trc"), o), 175);
+  EXPECT_LT(pelvis_travel(lab), 0.2) << "on the treadmill the pelvis stays";
+  write_bvh(in_units(motion_to_bvh(lab), 0.05644), tmp + "/treadmill.bvh", false);
+  const Motion bvh = clip_of_csv(tmp, "treadmill.bvh",
+                                 "file,subject,category,take,metres_per_unit,up\ntreadmill.bvh,s1,walking,1,0.05644,y\n");
+  EXPECT_GT(pelvis_travel(bvh), 2.5) << "the belt found and removed on a BVH clip";
+  check_clip("bvh_treadmill", bvh);
+  std::filesystem::remove_all(tmp);
 }
 
 }  // namespace

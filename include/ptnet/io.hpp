@@ -19,12 +19,12 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "ptnet/error.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet {
 
@@ -73,40 +73,6 @@ std::string input_file_problem(const std::string& path, ErrorKind* kind = nullpt
 // is when empty or absolute, else folder / file, never normalised as text
 // (the filesystem resolves "link/../x.trc" through the link, as the shell).
 std::string resolved_path(const std::string& folder, const std::string& file);
-
-// Longest line a LineReader returns.
-inline constexpr std::size_t kMaxLineBytes = std::size_t(1) << 24;  // 16 MiB
-
-// A text file (or text in memory) line by line, never whole: its memory is
-// one block of the file and the longest line. Lines are numbered from 1 and
-// returned without their end (LF or CRLF); a UTF-8 byte-order mark before
-// the first is dropped; each line is checked as UTF-8 as read_text_file
-// checks a file, before it is returned. Errors name the file: larger than `max_bytes`, a line
-// longer than kMaxLineBytes.
-//   ptnet::LineReader lines("walk.mot");
-//   for (std::string_view line; lines.next(line);) use(lines.number(), line);
-class LineReader {
- public:
-  explicit LineReader(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
-  LineReader(std::string_view text, std::string source);
-  ~LineReader();
-  LineReader(const LineReader&) = delete;
-  LineReader& operator=(const LineReader&) = delete;
-  // The next line into `line` (valid until the next call); false at the end.
-  bool next(std::string_view& line);
-  long number() const { return number_; }
-  const std::string& source() const { return source_; }
-
- private:
-  bool fill();  // reads another block; false at the end of the file
-  std::string source_;
-  std::unique_ptr<InputFile> file_;
-  std::uint64_t max_bytes_ = 0, read_ = 0;
-  std::string buffer_;     // the file's bytes read and not yet returned (at its end)
-  std::string_view text_;  // what is left to split: buffer_'s, or the text given
-  long number_ = 0;
-  bool end_ = false;
-};
 
 // What a file of stat mode `mode` is, for a message: "a folder", "a FIFO",
 // "a socket", "a character device", "a block device", "a regular file".
@@ -209,11 +175,14 @@ void write_table_file(const std::string& path, const std::vector<std::string>& c
                       const std::vector<std::vector<double>>& rows, const std::string& note, bool force);
 
 // A table as write_table_file writes it (and OpenSim writes storage files),
-// read back row by row, never whole: by the extension of `path` as
-// write_table_file has it, an OpenSim storage file (a header ending in
-// "endheader", then a line of column names and one row of numbers per line,
-// tab- or space-separated) or CSV (names, then rows; no quoted fields). Only the values asked for are parsed, so
-// its memory is one line and what the caller keeps. Blank lines are
+// read back row by row: by the extension of `path` as write_table_file has
+// it, an OpenSim storage file (a header ending in "endheader", then a line
+// of column names and one row of numbers per line, tab- or space-separated)
+// or CSV (names, then rows; no quoted fields). The file is read whole
+// (read_text_file: UTF-8, its size against the memory available) and split
+// by LineReader (strings.hpp: a byte-order mark, CRLF, line numbers); only
+// the values asked for are parsed, so its memory is the file and what the
+// caller keeps (rows_left() bounds what it reserves). Blank lines are
 // skipped; a row with another number of fields than there are columns is an
 // Error "FILE:LINE: expected 19 values (one per column), found 18".
 //   ptnet::TableReader t("walk_grf.mot");
@@ -222,20 +191,27 @@ void write_table_file(const std::string& path, const std::vector<std::string>& c
 class TableReader {
  public:
   explicit TableReader(const std::string& path);
-  TableReader(std::string_view text, const std::string& source, TableFormat format);
+  // `text` (not copied) must outlive the reader; `source` names it in errors.
+  TableReader(std::string_view text, std::string source, TableFormat format);
+  TableReader(const TableReader&) = delete;
+  TableReader& operator=(const TableReader&) = delete;
   const std::vector<std::string>& columns() const { return columns_; }
   int column(const std::string& name) const;  // its index, -1 when absent (the first if repeated)
   // The next row's values of the columns `use` (indices into columns()), in
   // that order, into `values`: finite numbers, else Error "FILE:LINE:
   // expected a number in column NAME, found 'abc'"; false after the last row.
   bool next(const std::vector<int>& use, std::vector<double>& values);
+  // Rows not yet read, at most (lines left, blank ones counted).
+  std::size_t rows_left() const { return lines_.lines_left(); }
   long line() const { return lines_.number(); }
-  const std::string& source() const { return lines_.source(); }
+  const std::string& source() const { return source_; }
 
  private:
   void read_names();
   TableFormat format_;  // first: a name of another format is refused before the file is opened
-  LineReader lines_;
+  std::string source_;
+  std::string text_;    // the file's text (empty when the text was given)
+  LineReader lines_;    // over text_ or the text given
   std::vector<std::string> columns_;
   std::vector<std::string_view> fields_;
 };

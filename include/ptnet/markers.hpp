@@ -17,11 +17,14 @@
 //    markers, Cappozzo et al. 1995) or, last, from the leg's geometry;
 //  - toe (metatarsophalangeal) joint from the metatarsal-head markers;
 //  - trunk, neck, shoulders (Rab et al. 2002), head, wrists from the markers
-//    present.
+//    present; with no trunk marker (a lower-body set), upright above the
+//    pelvis at the canonical proportions, the arms hanging.
 // A marker set is a MarkerMap: landmark -> marker names (alternatives; the
-// first the file has is used). Maps for the Delaware / gait2354 set, Vicon
-// Plug-in Gait and the common RASI / RCAL / RTOE / RMT5 naming ship with ptnet
-// (marker_map_names()).
+// first the file has is used), matched ignoring case and the separators
+// . _ - and space (R.ASIS = r_asis = RASIS). Maps for the Delaware /
+// gait2354 set, Vicon Plug-in Gait and a common vocabulary of the usual
+// names (RASI, R.ASIS, r_calc, RHEE, R.MT5, r_5meta, RP5MT, ...) ship with
+// ptnet (marker_map_names()).
 //
 // Dimension legend: F frames, M markers of a file, L landmarks.
 #pragma once
@@ -51,9 +54,15 @@ struct Trc {
   int find(std::string_view name) const;  // -1 if absent
 };
 
-// Reads a .trc file; errors are one line "walk.trc:7: expected 125 values
-// (Frame#, Time, 41 markers x 3), found 80".
+// Reads a .trc file as OpenSim's TRCFileAdapter does, and more (header
+// values padded with spaces and doubled tabs, space-separated files, blank
+// lines, CRLF: docs/markers.md); DataRate is checked against the Time
+// column. Errors are one line "walk.trc:7: expected 125 values (Frame#,
+// Time, 41 markers x 3), found 80".
 Trc read_trc(const std::string& path);
+// The markers of a .trc file (read_trc) or of a .c3d file (its points,
+// read_c3d in ptnet/c3d.hpp), chosen by the extension (any case).
+Trc read_markers(const std::string& path);
 
 // ------------------------------------------------------------ marker maps
 
@@ -67,11 +76,9 @@ struct MarkerMap {
   std::vector<MarkerMapEntry> entries;
 };
 
-// A shipped map by name ("delaware", "plugin-gait", "common") or a map file
-// (docs/markers.md: lines "landmark = name name ...", '#' comments, "map =
-// NAME" optional; unknown landmarks are errors that list the known ones).
-MarkerMap marker_map(const std::string& name_or_path);
-std::vector<std::string> marker_map_names();  // the shipped maps
+// The shipped maps' names ("delaware", "plugin-gait", "common"); a map file
+// is docs/markers.md's "landmark = name name ..." lines.
+std::vector<std::string> marker_map_names();
 // The marker_map of a list's row (a clips or trials CSV) whose files are
 // relative to `folder`: a shipped map's name stays that name; a map file is
 // resolved_path(folder, it) (ptnet/io.hpp), as the list's other files.
@@ -83,20 +90,49 @@ std::string marker_map_in(const std::string& folder, const std::string& name_or_
 struct MarkerReport {
   std::string map;                         // the map used
   std::vector<std::string> placed;         // landmarks found (after calibration)
+  std::vector<std::string> placed_by;      // [placed] the file's marker that placed each ("R.ASIS";
+                                           // a rebuilt one: "r_mknee (static trial)")
   std::vector<std::string> calibrated;     // landmarks rebuilt from the static trial
   std::vector<std::string> methods;        // one line per joint group: "knee: epicondyles midpoint"
+  std::vector<std::string> warnings;       // what was assumed (the upper body of a lower-body set)
   int gap_filled_frames = 0;               // marker samples gap-filled
-  std::string up_axis;                     // "y" or "z" (detected)
+  int rebuilt_samples = 0;                 // landmark samples rebuilt on their segment's markers (long gaps)
+  UpAxis up_axis = UpAxis::y;              // the lab's vertical (detected)
+  double metres_per_unit = 0;              // the trial's unit (its Units, or options.units / metres_per_unit)
   double stature_m = 0;                    // the subject's estimated stature (the offsets' H)
+  std::string stature_from;                // how: "static trial (median standing hip height)", ...
+  bool upper_body_assumed = false;         // no trunk marker: trunk, head and arms placed from the pelvis
   double belt_speed_mps = 0;               // treadmill belt removed (0: none)
+  // The belt's velocity (world x, y; m/s) removed: the lab's positions are
+  // without_belt(motion, -belt_velocity_mps) (zero: none removed).
+  Eigen::Vector2d belt_velocity_mps = Eigen::Vector2d::Zero();
 };
 
 // The canonical joints of a marker recording, as motion_from_bvh gives them
 // for a BVH file: z-up world (the lab's vertical axis detected), metres,
-// resampled to options.fps, grounded. Missing samples are gap-filled (cubic)
-// over gaps up to options.max_gap_s; a longer gap of a marker the map uses is
-// an error naming the marker and the frames. A file the map cannot place is
-// an error listing the markers found. `report`, if given, says how.
+// resampled to options.fps, grounded, a treadmill belt removed.
+//  - Units: the file's Units, or options.metres_per_unit / options.units
+//    when given; checked against the data (the ASIS 0.15-0.40 m apart), an
+//    Error with the unit that fits otherwise.
+//  - Names: the map of options.marker_map, else the shipped map that places
+//    the file and finds the most landmarks (ties: the one spelling more of
+//    the file's names as the file does). A name matching two markers, or a
+//    marker named for two landmarks, is an Error.
+//  - Gaps: filled (cubic) up to options.max_gap_s; a landmark's longer gap
+//    is rebuilt on its segment's other markers (3 needed) and a tracking
+//    marker's is left out of the fits in those frames; an Error names the
+//    landmark and the frames where neither can place it.
+//  - options.static_markers, read once, of the same marker set and scale
+//    (else an Error): rebuilds the landmarks the trial lacks, gives the
+//    stature and levels the feet. Without one the stature comes from the
+//    frames where the subject stands tallest.
+//  - Without a trunk marker the trunk stands upright above the pelvis, the
+//    head above it, the arms hang (a warning in `report`).
+// `report`, if given, says how.
 Motion motion_from_trc(const Trc& trc, const MotionOptions& options, MarkerReport* report = nullptr);
+// The same, releasing the file's samples once the markers it uses are taken
+// (load_motion's memory: the file's samples and the motion are never held
+// together).
+Motion motion_from_trc(Trc&& trc, const MotionOptions& options, MarkerReport* report = nullptr);
 
 }  // namespace ptnet

@@ -71,6 +71,7 @@ enum class Units { automatic, m, cm, mm, in, cmu };
 enum class UpAxis { y, z };
 Units parse_units(const std::string& text);  // "auto|m|cm|mm|in|cmu"
 UpAxis parse_up_axis(const std::string& text);  // "y|z"
+const char* up_axis_name(UpAxis up);            // "y", "z"
 const char* units_name(Units units);
 
 // Metres per file unit. For Units::automatic, chosen from the rest-pose
@@ -103,6 +104,10 @@ struct Motion {
   double fps = kFps;
   std::vector<Pose> frames;  // [F]
   double start_s = 0;        // time of frame 0 on the recording's clock (s): a .trc's first Time
+  // [F] or empty: the height retarget() added to each frame to keep its
+  // supporting foot on the floor (m). A correction of the copy's geometry,
+  // not a motion of the body: the simulator's load leaves it out.
+  std::vector<double> support_shift_m;
   int size() const { return int(frames.size()); }
 };
 
@@ -159,10 +164,13 @@ double standing_height(const Motion& motion);
 // per frame (joint rotations kept, up to bone twist) and takes the target's
 // length; the pelvis (spine, hips) and chest (neck, shoulders) groups are
 // placed rigidly by the frame of their source bones; the root's horizontal
-// displacement from frame 0 and its height scale with leg length; the motion
-// is re-grounded so that the lowest foot point during stance (5th percentile
-// over frames of the lowest heel or toe tip) is at z = 0. Throws Error for an empty motion
-// or a height outside 50-250 cm.
+// displacement from frame 0 and its height scale with leg length; each frame
+// is then raised or lowered so that the supporting ankle stands where the
+// scaled source's does (legs of other proportions than the source's reach
+// elsewhere as the knees bend; Motion::support_shift_m records it); the
+// motion is re-grounded so that the lowest foot point during stance (5th
+// percentile over frames of the lowest heel or toe tip) is at z = 0. Throws
+// Error for an empty motion or a height outside 50-250 cm.
 Motion retarget(const Motion& motion, double height_cm);
 
 // The factor retarget(motion, height_cm) scales the root's horizontal path by

@@ -34,18 +34,20 @@ struct Contact {
   bool whole = true;             // begins and ends inside the series (false: cut by its first or last sample)
 };
 
+// Which steps the plates see: `all` (a treadmill, an instrumented walkway:
+// every frame is compared), `some` (plates set in an overground walkway: a
+// contact of the simulator's that the plates do not see is left out of the
+// figures) or `automatic` ("auto" in a trials CSV: `some` when the plates
+// miss one of the simulator's contacts, else `all`).
+enum class PlateCoverage { automatic, all, some };
+
 // A trial of a gait lab: markers, plates and the subject.
 struct GaitTrial {
   std::string name;
   std::string markers, static_markers, plates;  // paths; static may be ""
   std::string marker_map;                      // "": chosen
   BodySpec body;                               // the subject (sex, stature, mass)
-  // Which steps the plates see: "all" (a treadmill, an instrumented
-  // walkway: every frame is compared), "some" (plates in an overground
-  // walkway: only the frames where every foot in contact, by the plates or
-  // the simulator, is on a plate) or "auto" ("some" when the simulator loads
-  // a foot that no plate sees in more than a tenth of its loaded frames).
-  std::string coverage = "auto";
+  PlateCoverage coverage = PlateCoverage::automatic;
 };
 // The columns of a trials CSV, the one list that read_gait_trials reads,
 // `ptnet physics-bench --help` prints and docs/physics.md documents (a test
@@ -104,8 +106,9 @@ struct GaitTrialResult {
   double fps = 0;
   std::vector<double> time_s;  // [T]
   ForceSource plates, simulated, naive;
-  std::string coverage;        // "all" or "some" (GaitTrial::coverage decided)
+  PlateCoverage coverage = PlateCoverage::all;  // all or some (GaitTrial::coverage decided)
   std::vector<bool> compared;  // [T] the frames the figures are over
+  int carried_frames = 0;      // left out: a seat carries part of the body (MotionDynamics::carried)
   int flight_frames = 0;       // the plates' frames below flight_bw (compared)
   int single_stance_frames = 0;
   double belt_mps = 0;         // the treadmill belt removed

@@ -174,6 +174,13 @@ struct MotionDynamics {
   // something that is not the floor (steps, objects), and those frames read
   // no load.
   double unsupported = 0;
+  // Frames where the load's point (the zero-moment point) stays more than
+  // 5 cm outside the feet on the floor for 0.3 s or longer: something else
+  // carries part of the body (a seat: a body that sits does not fall). The
+  // feet then carry what balances the load's moment about a seat under the
+  // hips (FrameTrace::carried_n the rest), which a mat under the feet does
+  // not sense.
+  double carried = 0;
 };
 // The check, on the motion's copy at kFloorReferenceHeightCm as placed by
 // `placed` (place_motion(motion, options); nullptr: placed here).
@@ -212,6 +219,7 @@ struct FrameTrace {
   std::array<FootLoad, 2> foot;  // [left, right]
   double load_n = 0;             // F of the frame (N); 0 when airborne
   double other_n = 0;            // carried by other body parts (knees, hands, ...)
+  double carried_n = 0;          // carried off the floor, by a seat (MotionDynamics::carried); not in load_n
   double sink_m = 0;             // sink level above the lowest surface point (m)
 };
 
@@ -232,6 +240,7 @@ struct ForceTable {
   std::vector<double> total_n;                // [T] on and off the mat, every body part
   std::vector<std::array<double, 2>> foot_n;  // [T] [left, right]
   std::vector<std::array<double, 2>> cop_u;   // [T] [left, right]; NaN: foot unloaded
+  std::vector<double> carried_n;              // [T] carried off the floor by a seat (FrameTrace::carried_n)
   // [T] [left, right] where each foot's load acts, on the floor (m): the
   // point cop_u along the foot's heel-toe line (foot_ends) of the motion's
   // frame, x and y of its world (z up); (0, 0) when the foot is unloaded.
@@ -241,13 +250,13 @@ struct ForceTable {
 ForceTable force_table(const std::vector<FrameTrace>& trace, const Motion& motion, const Body& body);
 // Writes the table as an OpenSim storage file (.mot or .sto: time, then
 // total_force_vy, total_force_bw, l_/r_ground_force_vy, l_/r_force_bw,
-// l_/r_cop_u, then each foot's whole plate group l_/r_ground_force_vx, vz,
-// px, py, pz) or as CSV (.csv, the same columns), atomically; refuses to
-// overwrite unless `force`. The groups are in OpenSim's axes, y up: the
-// force (0, vy, 0) N acting at (px, 0, pz) = (y, 0, x) of cop_m (m; 0 when
-// unloaded), the inverse of the lab-to-world swap of a y-up file, so that
-// the file reads back as two force plates, one a foot (ptnet physics-bench,
-// OpenSim).
+// l_/r_cop_u, carried_bw, then each foot's whole plate group
+// l_/r_ground_force_vx, vz, px, py, pz) or as CSV (.csv, the same columns),
+// atomically; refuses to overwrite unless `force`. The groups are in
+// OpenSim's axes, y up: the force (0, vy, 0) N acting at (px, 0, pz) =
+// (y, 0, x) of cop_m (m; 0 when unloaded), the inverse of the lab-to-world
+// swap of a y-up file, so that the file reads back as two force plates, one
+// a foot (ptnet physics-bench, OpenSim).
 void write_force_table(const ForceTable& table, const std::string& path, bool force);
 
 // simulate() with a given placement (place_copy: the source motion's,

@@ -14,7 +14,7 @@ namespace ptnet {
 // Throws Error "SOURCE:LINE: expected UTF-8 text, found byte 0xE9 (...)"
 // (kind format) unless `text` is UTF-8 (utf8_invalid_at, strings.hpp; a
 // byte-order mark is); `first_line` numbers text's first line. The one check
-// of every reader of text: read_text_file and LineReader call it before
+// of every reader of text files: read_text_file calls it before
 // their caller sees any of the text. Defined in strings.cpp.
 void check_utf8(std::string_view text, const std::string& source, long first_line = 1);
 

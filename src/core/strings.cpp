@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "core/io_internal.hpp"
 #include "ptnet/error.hpp"
@@ -15,27 +16,34 @@ namespace {
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 }  // namespace
 
-std::string trim(std::string_view s) {
+std::string_view trim_view(std::string_view s) {
   std::size_t b = 0, e = s.size();
   while (b < e && blank(s[b])) ++b;
   while (e > b && blank(s[e - 1])) --e;
-  return std::string(s.substr(b, e - b));
+  return s.substr(b, e - b);
 }
+
+std::string trim(std::string_view s) { return std::string(trim_view(s)); }
 
 std::string lower(std::string s) {
   for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
 
-std::vector<std::string> split(std::string_view text, char sep) {
-  std::vector<std::string> out;
+void split_views(std::string_view text, char sep, std::vector<std::string_view>& out) {
+  out.clear();
   std::size_t begin = 0;
   for (std::size_t i = 0; i <= text.size(); ++i)
     if (i == text.size() || text[i] == sep) {
-      out.push_back(trim(text.substr(begin, i - begin)));
+      out.push_back(trim_view(text.substr(begin, i - begin)));
       begin = i + 1;
     }
-  return out;
+}
+
+std::vector<std::string> split(std::string_view text, char sep) {
+  std::vector<std::string_view> views;
+  split_views(text, sep, views);
+  return std::vector<std::string>(views.begin(), views.end());
 }
 
 std::vector<std::string> split_list(std::string_view text) {
@@ -45,17 +53,21 @@ std::vector<std::string> split_list(std::string_view text) {
   return out;
 }
 
-std::vector<std::string> split_blanks(std::string_view text) {
-  auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
-  std::vector<std::string> out;
+void split_blanks(std::string_view text, std::vector<std::string_view>& out) {
+  out.clear();
   std::size_t i = 0;
   while (i < text.size()) {
     while (i < text.size() && blank(text[i])) ++i;
     const std::size_t start = i;
     while (i < text.size() && !blank(text[i])) ++i;
-    if (i > start) out.emplace_back(text.substr(start, i - start));
+    if (i > start) out.push_back(text.substr(start, i - start));
   }
-  return out;
+}
+
+std::vector<std::string> split_blanks(std::string_view text) {
+  std::vector<std::string_view> views;
+  split_blanks(text, views);
+  return std::vector<std::string>(views.begin(), views.end());
 }
 
 std::string join(const std::vector<std::string>& items, std::string_view sep) {
@@ -164,6 +176,33 @@ void check_utf8(std::string_view text, const std::string& source, long first_lin
   std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[at]));
   throw Error::at(source, line, "UTF-8 text",
                   std::string("byte ") + byte + " (Latin-1 or Windows-1252? save the file as UTF-8)");
+}
+
+LineReader::LineReader(std::string_view text) : text_(text) {
+  if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
+}
+
+bool LineReader::next(std::string_view& line) {
+  if (pos_ >= text_.size()) return false;
+  const std::size_t nl = text_.find('\n', pos_);
+  const std::size_t end = nl == std::string_view::npos ? text_.size() : nl;
+  line = text_.substr(pos_, end - pos_);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  pos_ = nl == std::string_view::npos ? text_.size() : nl + 1;
+  ++number_;
+  return true;
+}
+
+std::size_t LineReader::lines_left() const {
+  if (pos_ >= text_.size()) return 0;
+  std::size_t n = 0;
+  const char* p = text_.data() + pos_;
+  const char* const end = text_.data() + text_.size();
+  while (const void* nl = std::memchr(p, '\n', std::size_t(end - p))) {
+    ++n;
+    p = static_cast<const char*>(nl) + 1;
+  }
+  return n + (p < end ? 1 : 0);
 }
 
 std::string first_repeat(const std::vector<std::string>& items) {

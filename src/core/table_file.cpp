@@ -1,6 +1,5 @@
 // Numeric tables as OpenSim storage files or CSV (ptnet/io.hpp): the writer
 // and its reader.
-#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -63,38 +62,21 @@ namespace {
 // The fields of a line: between runs of blanks (storage) or commas (CSV),
 // each trimmed of blanks.
 void split_fields(std::string_view line, TableFormat format, std::vector<std::string_view>& out) {
-  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
-  out.clear();
-  std::size_t i = 0;
-  if (format == TableFormat::mot) {
-    while (i < line.size()) {
-      while (i < line.size() && blank(line[i])) ++i;
-      const std::size_t start = i;
-      while (i < line.size() && !blank(line[i])) ++i;
-      if (i > start) out.push_back(line.substr(start, i - start));
-    }
-    return;
-  }
-  for (std::size_t start = 0;; start = i + 1) {
-    i = std::min(line.find(',', start), line.size());
-    std::size_t b = start, e = i;
-    while (b < e && blank(line[b])) ++b;
-    while (e > b && blank(line[e - 1])) --e;
-    out.push_back(line.substr(b, e - b));
-    if (i == line.size()) return;
-  }
+  if (format == TableFormat::mot) return split_blanks(line, out);
+  split_views(line, ',', out);
 }
 
-bool blank_line(std::string_view line) {
-  return line.find_first_not_of(" \t\r") == std::string_view::npos;
-}
+bool blank_line(std::string_view line) { return trim_view(line).empty(); }
 
 }  // namespace
 
-TableReader::TableReader(const std::string& path) : format_(table_format_of(path)), lines_(path) { read_names(); }
+TableReader::TableReader(const std::string& path)
+    : format_(table_format_of(path)), source_(path), text_(read_text_file(path)), lines_(text_) {
+  read_names();
+}
 
-TableReader::TableReader(std::string_view text, const std::string& source, TableFormat format)
-    : format_(format), lines_(text, source) {
+TableReader::TableReader(std::string_view text, std::string source, TableFormat format)
+    : format_(format), source_(std::move(source)), lines_(text) {
   read_names();
 }
 

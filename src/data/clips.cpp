@@ -23,10 +23,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A motion file a folder is searched for: BVH or markers (.trc).
+// A motion file a folder is searched for: BVH or markers (.trc, .c3d).
 bool is_motion_file(const fs::path& p) {
   const std::string ext = lower(p.extension().string());
-  return ext == ".bvh" || ext == ".trc";
+  return ext == ".bvh" || ext == ".trc" || ext == ".c3d";
 }
 
 // A path key for matching --motions files against clips.csv rows.
@@ -133,7 +133,7 @@ std::vector<ClipSource> clips_from_files(const std::vector<std::string>& inputs,
         // Not only regular files: a FIFO or device named x.bvh is refused when read, not skipped.
         if (!it->is_directory(ec) && is_motion_file(it->path())) found.push_back(it->path().string());
       if (ec) throw Error::in(in, "cannot list folder: " + ec.message(), ErrorKind::io);
-      if (found.empty()) throw Error::in(in, "folder holds no .bvh or .trc files");
+      if (found.empty()) throw Error::in(in, "folder holds no .bvh, .trc or .c3d files");
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else if (fs::exists(in, ec)) {

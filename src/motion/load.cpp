@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "c3d_internal.hpp"
 #include "markers_internal.hpp"
 #include "ptnet/error.hpp"
 #include "motion_internal.hpp"
@@ -55,7 +56,7 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
 }
 
 Motion load_motion(const std::string& path, const MotionOptions& options) {
-  if (is_trc_path(path)) return motion_from_trc(read_trc(path), options);
+  if (is_trc_path(path) || is_c3d_path(path)) return motion_from_trc(read_markers(path), options);
   return motion_from_bvh(read_bvh(path), options);
 }
 

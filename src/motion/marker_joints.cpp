@@ -18,6 +18,8 @@
 //  trunk      neck at the acromia midpoint (else the C7 / clavicle midpoint,
 //             else the sternum marker 0.04 H back and 0.03 H up); spine and
 //             chest on the pelvis -> neck line at the canonical fractions.
+//             No trunk marker (a lower-body set): the trunk upright, the
+//             neck 0.288 H above the pelvis joint, the shoulders level.
 //  shoulder   acromion lowered by 0.17 x the biacromial breadth (Rab et al.
 //             2002); without the marker, 0.13 H lateral to the neck.
 //  elbow, wrist  as the knee (breadth 0.039 H) and the marker midpoint; none:
@@ -93,6 +95,7 @@ Pelvis pelvis_frame(const LandmarkFrame& lm) {
   return p;
 }
 
+// The neck from the trunk markers; NaN without any (a lower-body set).
 V neck_point(const LandmarkFrame& lm, const Pelvis& p, double h) {
   const V& rs = lm[sided(kShoulder, 0)];
   const V& ls = lm[sided(kShoulder, 1)];
@@ -100,7 +103,8 @@ V neck_point(const LandmarkFrame& lm, const Pelvis& p, double h) {
   if (has(lm[kC7]) && has(lm[kClav])) return mid(lm[kC7], lm[kClav]);
   for (int k : {kC7, kClav}) if (has(lm[k])) return lm[k];
   if (has(lm[kSternum])) return lm[kSternum] - 0.04 * h * p.anterior + 0.03 * h * p.superior;
-  const V& one = has(rs) ? rs : ls;  // missing_landmarks() guarantees one of these
+  if (!has(rs) && !has(ls)) return V::Constant(NAN);
+  const V& one = has(rs) ? rs : ls;
   return one - (one - p.origin).dot(p.right) * p.right;
 }
 
@@ -142,13 +146,14 @@ void place_leg(const LandmarkFrame& lm, const Pelvis& p, int side, double h, Pos
   out[hip_j + 3] = toe_ref - 0.010 * foot_up;
 }
 
+// `right`: the shoulders' lateral direction without an acromion marker.
 void place_arm(const LandmarkFrame& lm, const Pelvis& p, int side, double h, const V& neck, const V& trunk_up,
-               double shoulder_drop, Pose& out) {
+               const V& right, double shoulder_drop, Pose& out) {
   const int sh = side == 0 ? kRightShoulder : kLeftShoulder;
   const V medial = side == 0 ? V(-p.right) : p.right;
   const V& acromion = lm[sided(kShoulder, side)];
   const V shoulder = has(acromion) ? V(acromion - shoulder_drop * trunk_up)
-                                   : V(neck - medial * (0.5 * A::kDrillisContini.shoulder_width * h));
+                                   : V(neck + (side == 0 ? 1 : -1) * right * (0.5 * A::kDrillisContini.shoulder_width * h));
   const V &el = lm[sided(kElbowLat, side)], &em = lm[sided(kElbowMed, side)];
   const V &wl = lm[sided(kWristLat, side)], &wm = lm[sided(kWristMed, side)];
   V wrist = has(wl) && has(wm) ? mid(wl, wm) : has(wl) ? wl : wm;
@@ -165,11 +170,19 @@ void place_arm(const LandmarkFrame& lm, const Pelvis& p, int side, double h, con
 
 }  // namespace
 
+std::array<V, 2> hip_centres(const LandmarkFrame& lm) {
+  const Pelvis p = pelvis_frame(lm);
+  return {p.hip[0], p.hip[1]};
+}
+
 Pose joints_from_landmarks(const LandmarkFrame& lm, double h, std::vector<std::string>* methods) {
   const Pelvis p = pelvis_frame(lm);
   Pose out;
   out[kPelvis] = mid(p.hip[0], p.hip[1]);
-  const V neck = neck_point(lm, p, h);
+  V neck = neck_point(lm, p, h);
+  const bool assumed = !has(neck);  // no trunk marker: upright above the pelvis
+  if (assumed) neck = out[kPelvis] + (A::kDrillisContini.shoulder - A::kDrillisContini.hip) * h * V(0, 0, 1);
+  const V right = assumed ? normal_to(p.right, V(0, 0, 1), p.right) : p.right;
   const V trunk_up = unit(neck - out[kPelvis], p.superior);
   const double span = A::kDrillisContini.shoulder - A::kDrillisContini.hip;  // pelvis -> neck, 0.288 H
   out[kSpine] = out[kPelvis] + (0.070 / span) * (neck - out[kPelvis]);
@@ -182,7 +195,7 @@ Pose joints_from_landmarks(const LandmarkFrame& lm, double h, std::vector<std::s
   const double drop = has(rs) && has(ls) ? 0.17 * (rs - ls).norm() : 0.0;
   for (int side = 0; side < 2; ++side) {
     place_leg(lm, p, side, h, out);
-    place_arm(lm, p, side, h, neck, trunk_up, drop, out);
+    place_arm(lm, p, side, h, neck, trunk_up, right, drop, out);
   }
   if (methods) {
     auto how = [&](int lat, int med, const char* name, const char* none) {
@@ -194,6 +207,9 @@ Pose joints_from_landmarks(const LandmarkFrame& lm, double h, std::vector<std::s
     };
     methods->push_back("hips: Harrington 2007 from the ASIS and the " +
                        std::string(has(lm[kRPsis]) && has(lm[kLPsis]) ? "PSIS" : "sacral marker"));
+    if (assumed)
+      methods->push_back("trunk: assumed (no trunk marker): upright, the neck 0.288 H above the pelvis joint, "
+                         "the shoulders level 0.259 H apart, the arms hanging");
     how(kKneeLat, kKneeMed, "knee", "hip-ankle triangle");
     how(kAnkleLat, kAnkleMed, "ankle", "offset from the heel marker");
     how(kElbowLat, kElbowMed, "elbow", has(lm[sided(kWristLat, 0)]) || has(lm[sided(kWristMed, 0)]) ? "shoulder-wrist triangle" : "hanging");

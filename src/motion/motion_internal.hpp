@@ -45,6 +45,9 @@ Eigen::Vector2d treadmill_belt_velocity(const Motion& motion);
 // The motion as if overground: every joint moved by -velocity * t.
 Motion without_belt(Motion motion, const Eigen::Vector2d& velocity);
 
+// Metres per unit of a named unit (0 for Units::automatic).
+double unit_metres(Units units);
+
 // Canonical bone offsets (parent -> joint) in the rest pose, world axes,
 // from anthropometric proportions of `height_cm` (arms hanging down).
 Pose canonical_rest_offsets(double height_cm);

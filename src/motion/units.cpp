@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fk.hpp"
+#include "motion_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/motion.hpp"
 #include "ptnet/strings.hpp"
@@ -18,6 +19,8 @@ namespace {
 constexpr double kCmuUnitM = 2.54 / 0.45 / 100;  // 0.056444 m
 constexpr double kTypicalHeightM = 1.7;
 constexpr double kMinHeightM = 1.0, kMaxHeightM = 2.3;
+
+}  // namespace
 
 double unit_metres(Units u) {
   switch (u) {
@@ -36,6 +39,8 @@ double unit_metres(Units u) {
   }
   return 0;
 }
+
+namespace {
 
 // Largest extent (file units) of the joints and end sites in frame 0, over
 // the three axes: the standing height for an upright first frame, and still
@@ -79,6 +84,8 @@ UpAxis parse_up_axis(const std::string& text) {
   if (s == "z") return UpAxis::z;
   throw Error("up axis: expected y or z, found " + (text.empty() ? std::string("nothing") : text));
 }
+
+const char* up_axis_name(UpAxis up) { return up == UpAxis::y ? "y" : "z"; }
 
 const char* units_name(Units units) {
   switch (units) {

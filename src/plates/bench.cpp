@@ -18,6 +18,22 @@
 namespace ptnet {
 namespace fs = std::filesystem;
 
+PlateCoverage parse_plate_coverage(const std::string& text) {
+  if (text == "auto") return PlateCoverage::automatic;
+  if (text == "all") return PlateCoverage::all;
+  if (text == "some") return PlateCoverage::some;
+  throw Error("plate coverage '" + text + "' is not auto, all or some");
+}
+
+const char* plate_coverage_name(PlateCoverage coverage) {
+  switch (coverage) {
+    case PlateCoverage::automatic: return "auto";
+    case PlateCoverage::all: return "all";
+    case PlateCoverage::some: return "some";
+  }
+  return "auto";
+}
+
 PhysicsBenchOptions::PhysicsBenchOptions() {
   sim.placement = Placement::follow;
   sim.sensor = ideal_sensor();
@@ -74,12 +90,16 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
     g.name = get("trial");
     check_trial_name(csv, row.line, g.name, names);
     g.markers = trial_file(csv, row.line, "markers", base, get("markers"), true);
-    g.plates = trial_file(csv, row.line, "plates", base, get("plates"), true);
+    g.plates = trial_file(csv, row.line, "plates", base, get("plates"), false);  // "": the markers' own (a .c3d file's)
+    if (g.plates.empty() && lower(fs::path(g.markers).extension().string()) != ".c3d")
+      throw Error::at(csv, row.line, "a plates file (or markers in a .c3d file, which holds its plates)", "an empty field");
     g.static_markers = trial_file(csv, row.line, "static", base, get("static"), false);
     g.marker_map = marker_map_in(base, get("marker_map"));
-    if (!get("coverage").empty()) g.coverage = get("coverage");
-    if (g.coverage != "all" && g.coverage != "some" && g.coverage != "auto")
-      throw Error::at(csv, row.line, "coverage all, some or auto", escaped(g.coverage));
+    if (!get("coverage").empty()) try {
+        g.coverage = parse_plate_coverage(get("coverage"));
+      } catch (const Error&) {
+        throw Error::at(csv, row.line, "coverage auto, all or some", escaped(get("coverage")));
+      }
     g.body = parse_body_fields(csv, row.line, g.name, get("sex"), get("height_cm"), get("weight_kg"));
     g.body.role = "original";
     out.push_back(std::move(g));
@@ -193,29 +213,44 @@ ForceSource model_source(const ForceTable& table, double bw, bool naive, const P
 }
 
 // The frames the figures are over (GaitTrial::coverage): all of them when
-// the plates see every step; else those where every foot in contact, by
-// the plates or the simulator, is on a plate.
-void choose_compared_frames(GaitTrialResult& r, const std::string& coverage, double contact_bw) {
+// the plates see every step; else all but those of the simulator's stances
+// that the plates do not see (their foot loaded on a plate in under half of
+// the contact's frames: a foot beside the plates, on a box, ...), whole, so
+// that no contact is cut where the two disagree on its ends. A stance
+// carries CompareOptions::stance_bw at its peak; a lighter contact (a swing
+// foot grazing the floor) is the simulator's to answer for, and stays compared.
+void choose_compared_frames(GaitTrialResult& r, PlateCoverage coverage, const detail::CompareOptions& co) {
+  const double contact_bw = co.contact_bw, bw = co.weight_n;
+  constexpr double kCarriedBw = 0.02;
   const std::size_t T = r.time_s.size();
-  int loaded = 0, unseen = 0;
-  std::vector<bool> every_foot_seen(T, true);
+  std::vector<bool> seen(T, true);
+  bool missed = false;
+  for (const Contact& c : r.simulated.contacts) {
+    std::vector<std::size_t> frames;
+    int on_plate = 0;
+    for (std::size_t t = 0; t < T; ++t)
+      if (r.time_s[t] >= c.start_s && r.time_s[t] <= c.end_s) {
+        frames.push_back(t);
+        on_plate += r.plates.foot_bw[t][std::size_t(c.foot)] > contact_bw;
+      }
+    if (frames.empty() || 2 * on_plate >= int(frames.size()) || c.peak_n < co.stance_bw * bw) continue;
+    missed = true;
+    for (std::size_t t : frames) seen[t] = false;
+  }
+  const bool some = coverage == PlateCoverage::some || (coverage == PlateCoverage::automatic && missed);
+  r.coverage = some ? PlateCoverage::some : PlateCoverage::all;
+  r.compared = some ? seen : std::vector<bool>(T, true);
+  // Frames a seat carries (MotionDynamics::carried): the plates under the
+  // feet see what is left of the load, the simulator's seat share is a model.
+  r.carried_frames = 0;
   for (std::size_t t = 0; t < T; ++t)
-    for (int f = 0; f < 2; ++f) {
-      const bool sim = r.simulated.foot_bw[t][std::size_t(f)] > contact_bw;
-      const bool plate = r.plates.foot_bw[t][std::size_t(f)] > contact_bw;
-      loaded += sim;
-      unseen += sim && !plate;
-      if (sim && !plate) every_foot_seen[t] = false;
-    }
-  const bool some = coverage == "some" || (coverage == "auto" && unseen > loaded / 10);
-  r.coverage = some ? "some" : "all";
-  r.compared = some ? every_foot_seen : std::vector<bool>(T, true);
+    if (r.table.carried_n[t] > kCarriedBw * bw) r.compared[t] = false, ++r.carried_frames;
 }
 
 }  // namespace
 
 GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions& o) {
-  const Trc trc = read_trc(trial.markers);
+  const Trc trc = read_markers(trial.markers);
   MotionOptions mo;
   mo.fps = o.fps > 0 ? o.fps : trc.rate_hz;
   mo.static_markers = trial.static_markers;
@@ -236,8 +271,8 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   r.table = force_table(trace, source, body);
   r.time_s = r.table.time_s;
   const double bw = body.mass_kg() * anthropometry::kGravity;
-  const ForcePlates fp = read_grf_mot(trial.plates);
-  const int up = report.up_axis == "y" ? 1 : 2;
+  const ForcePlates fp = read_force_plates(trial.plates.empty() ? trial.markers : trial.plates, o.contact_n);
+  const int up = report.up_axis == UpAxis::y ? 1 : 2;
   const PlateFeet pf = plate_feet(fp, lab, up, o);
   r.plates = plates_source(fp, pf, r.time_s, 1 / r.fps, bw, o);
   r.simulated = model_source(r.table, bw, false, o);
@@ -245,7 +280,8 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   detail::CompareOptions co;
   co.flight_bw = o.flight_bw;
   co.contact_bw = o.contact_n / bw;
-  choose_compared_frames(r, trial.coverage, co.contact_bw);
+  co.weight_n = bw;
+  choose_compared_frames(r, trial.coverage, co);
   detail::compare_with_plates(r.simulated, r.plates, r.time_s, r.compared, co);
   detail::compare_with_plates(r.naive, r.plates, r.time_s, r.compared, co);
   for (std::size_t t = 0; t < r.time_s.size(); ++t) {

@@ -106,8 +106,13 @@ void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::v
   // Contacts matched to the plates' by the largest overlap, foot by foot.
   std::vector<double> peak, stance, rate;
   s.matched = 0;
+  const auto all_compared = [&](const Contact& c) {
+    for (std::size_t t = 0; t < time_s.size(); ++t)
+      if (time_s[t] >= c.start_s && time_s[t] <= c.end_s && !compared[t]) return false;
+    return true;
+  };
   for (const Contact& p : plates.contacts) {
-    if (!p.whole) continue;
+    if (!p.whole || p.peak_n < o.stance_bw * o.weight_n || !all_compared(p)) continue;
     const Contact* best = nullptr;
     for (const Contact& c : s.contacts)
       if (c.foot == p.foot && overlap(c, p) > 0 && (!best || overlap(c, p) > overlap(*best, p))) best = &c;

@@ -6,26 +6,18 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "ptnet/c3d.hpp"
 #include "ptnet/plates.hpp"
 
 namespace ptnet {
 
-// A plate's sample of a force or a position, kept in single precision (7
-// significant digits: 1 mN in 10 kN, 1 micrometre in 10 m, beyond what
-// plates measure); reads as an Eigen::Vector3d.
-struct PlateVector {
-  std::array<float, 3> v{};
-  PlateVector() = default;
-  PlateVector(double x, double y, double z) : v{float(x), float(y), float(z)} {}
-  PlateVector(const Eigen::Vector3d& p) : PlateVector(p.x(), p.y(), p.z()) {}  // NOLINT: implicit, as Eigen's
-  double operator[](int i) const { return v[std::size_t(i)]; }
-  operator Eigen::Vector3d() const { return {v[0], v[1], v[2]}; }  // NOLINT
-};
+// A trials CSV's coverage ("auto|all|some"; throws Error) and its name.
+PlateCoverage parse_plate_coverage(const std::string& text);
+const char* plate_coverage_name(PlateCoverage coverage);
 
 // Force plates of a numeric table (OpenSim storage .mot / .sto: a header
 // ending in "endheader", named columns, one row per sample; or CSV). A plate
@@ -36,8 +28,9 @@ struct PlateVector {
 struct ForcePlates {
   struct Plate {
     std::string prefix;
-    std::vector<PlateVector> force_n;  // [N]
-    std::vector<PlateVector> cop_m;    // [N]
+    std::vector<Eigen::Vector3d> force_n;  // [N]
+    std::vector<Eigen::Vector3d> cop_m;    // [N]
+    std::vector<Eigen::Vector3d> free_moment_nm;  // [N] C3D only (empty from .mot); NaN where cop_m is
   };
   std::vector<double> time_s;  // [N], increasing
   std::vector<Plate> plates;   // [P]
@@ -47,6 +40,26 @@ struct ForcePlates {
 // from `path` (storage or CSV by its extension, as TableReader has it).
 ForcePlates parse_grf_mot(std::string_view text, const std::string& source);
 ForcePlates read_grf_mot(const std::string& path);
+
+// ------------------------------------------------------------ C3D plates
+
+// The samples of C3D plates: every analog sample, or one per marker frame
+// (the mean of the samples within half a frame of its time).
+enum class PlateRate { analog, markers };
+
+// The force plates of a C3D file (types 1-4; docs/formats.md, "C3D
+// files"): per plate the ground reaction force on the subject (N), its
+// centre of pressure on the plate's surface (m) and its free moment (N m,
+// along the plate's normal), in the file's lab frame, on the file's clock
+// (ptnet/c3d.hpp). The CoP and free moment are NaN where the vertical force
+// is below `cop_min_n`. Errors: no plates, a type other than 1-4, a plate
+// whose parameters cannot be used (C3d::plates_problem).
+ForcePlates plates_from_c3d(const C3d& c3d, double cop_min_n, PlateRate rate);
+// The force plates of `path`, the reader chosen by its extension: .c3d
+// (plates_from_c3d at the marker rate: at the analog rate the bench's
+// contact threshold would take a plate's millisecond spikes for contacts)
+// or OpenSim storage (read_grf_mot; cop_min_n unused).
+ForcePlates read_force_plates(const std::string& path, double cop_min_n);
 
 // The contacts of a force series (time_s and force_n of equal length).
 std::vector<Contact> find_contacts(const std::vector<double>& time_s, const std::vector<double>& force_n,
@@ -65,10 +78,15 @@ std::vector<double> resample_box(const std::vector<double>& t, const std::vector
 struct CompareOptions {
   double flight_bw = 0.05;   // flight: the total force below this
   double contact_bw = 0.03;  // single stance: one foot above this, the other not
+  // A stance carries this at its peak; a lighter contact (a swing foot
+  // grazing the floor, a seated foot resting) is not one.
+  double stance_bw = 0.3;
+  double weight_n = 0;  // the body's weight, N
 };
 // Fills s's figures against `plates` (PhysicsBenchOptions, ForceSource)
 // over the frames `compared` marks ([T]): a stride counts when all its
-// frames are compared, a contact when the plates saw it whole.
+// frames are compared, a contact when it is a stance that the plates saw
+// whole and every frame of it is compared.
 void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::vector<double>& time_s,
                          const std::vector<bool>& compared, const CompareOptions& options);
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "plates_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/plates.hpp"
@@ -134,8 +135,9 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
     j["fps"] = r.fps;
     j["frames"] = r.time_s.size();
     j["treadmill_belt_mps"] = r.belt_mps;
-    j["coverage"] = r.coverage;
+    j["coverage"] = plate_coverage_name(r.coverage);
     j["compared_frames"] = std::count(r.compared.begin(), r.compared.end(), true);
+    j["carried_frames"] = r.carried_frames;
     j["plate_flight_frames"] = r.flight_frames;
     j["single_stance_frames"] = r.single_stance_frames;
     j["plates"] = {{"contacts", source_json(r.plates)["contacts"]}};
@@ -159,8 +161,9 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
   for (const auto& r : results)
     b << "<h2>" << html_escape(r.trial.name) << "</h2>\n<p>" << html_escape(sex_name(r.trial.body.sex)) << ", "
       << fixed_text(r.trial.body.height_cm, 1) << " cm, " << fixed_text(r.trial.body.weight_kg, 1) << " kg; "
-      << fixed_text(r.fps, 0) << " frames/s; plates see " << (r.coverage == "all" ? "every step" : "some steps")
+      << fixed_text(r.fps, 0) << " frames/s; plates see " << (r.coverage == PlateCoverage::all ? "every step" : "some steps")
       << ": " << std::count(r.compared.begin(), r.compared.end(), true) << " of " << r.time_s.size() << " frames compared"
+      << (r.carried_frames > 0 ? " (" + std::to_string(r.carried_frames) + " carried by a seat left out)" : std::string())
       << (r.belt_mps > 0 ? "; treadmill belt " + fixed_text(r.belt_mps, 2) + " m/s removed" : std::string()) << ".</p>\n"
       << "<img src=\"" << html_escape(r.trial.name) << "_total.svg\" alt=\"total vertical force\">\n"
       << "<img src=\"" << html_escape(r.trial.name) << "_feet.svg\" alt=\"vertical force per foot\">\n";

@@ -1,8 +1,9 @@
 // Force plates from a numeric table (OpenSim storage .mot / .sto, or CSV:
 // ptnet/io.hpp's TableReader): each group of columns PREFIX + vx vy vz px
-// py pz is a plate. Only those columns and the time are parsed, row by row,
-// into single-precision samples (PlateVector): the memory is what is kept,
-// 8 + 24 bytes per plate per sample, however wide or long the file.
+// py pz is a plate. Only those columns and the time are parsed, row by row:
+// the memory is the file's text and what is kept, 8 + 48 bytes per plate
+// per sample, reserved once from the rows left and checked against the
+// memory available first, however wide the file.
 #include <algorithm>
 #include <cmath>
 
@@ -32,18 +33,15 @@ std::vector<std::pair<std::string, std::array<int, 6>>> plate_groups(const Table
   return out;
 }
 
-// Room for one more sample in every array, the growth checked against the
-// available memory first.
-void grow(ForcePlates& p, const std::string& source) {
-  const std::size_t n = p.time_s.size();
-  if (n < p.time_s.capacity()) return;
-  const std::size_t next = std::max<std::size_t>(1024, 2 * n);
-  const std::uint64_t per_sample = sizeof(double) + p.plates.size() * 2 * sizeof(PlateVector);
-  check_memory(checked_mul(next, per_sample, source, "plate samples"), source, "the plates' samples");
-  p.time_s.reserve(next);
+// Room for `rows` samples in every array, checked against the memory
+// available first.
+void reserve_samples(ForcePlates& p, std::size_t rows, const std::string& source) {
+  const std::uint64_t per_sample = sizeof(double) + p.plates.size() * 2 * sizeof(Eigen::Vector3d);
+  check_memory(checked_mul(rows, per_sample, source, "the plate samples"), source, "the plate samples");
+  p.time_s.reserve(rows);
   for (auto& plate : p.plates) {
-    plate.force_n.reserve(next);
-    plate.cop_m.reserve(next);
+    plate.force_n.reserve(rows);
+    plate.cop_m.reserve(rows);
   }
 }
 
@@ -60,13 +58,13 @@ ForcePlates read_plates(TableReader& t) {
   p.source = source;
   for (const auto& [prefix, c] : groups) {
     use.insert(use.end(), c.begin(), c.end());
-    p.plates.push_back({prefix, {}, {}});
+    p.plates.push_back({prefix, {}, {}, {}});
   }
+  reserve_samples(p, t.rows_left(), source);
   for (std::vector<double> v; t.next(use, v);) {
     if (!p.time_s.empty() && !(v[0] > p.time_s.back()))
       throw Error::in(source, "expected increasing times, found " + number_text(v[0]) + " after " +
                                   number_text(p.time_s.back()));
-    grow(p, source);
     p.time_s.push_back(v[0]);
     for (std::size_t k = 0; k < p.plates.size(); ++k) {
       const double* x = &v[1 + 6 * k];

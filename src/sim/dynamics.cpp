@@ -9,6 +9,7 @@
 #include "sim_internal.hpp"
 
 namespace ptnet {
+
 namespace {
 constexpr double kMaxFlightS = 0.6;  // s: a longer time off the floor is not a human flight (0.44 m jump)
 constexpr double kTooShortS = 0.15;  // s: a shorter one is not told from a flight
@@ -22,26 +23,16 @@ MotionDynamics check_dynamics(const Motion& motion, const SimOptions& options, c
   const double ratio = retarget_scale(motion, kFloorReferenceHeightCm);
   const MotionPlacement place = (placed ? *placed : place_motion(motion, options)).scaled(ratio);
   const Motion copy = detail::pitch_corrected(retarget(motion, kFloorReferenceHeightCm), place.foot_pitch);
-  const Body& body = detail::reference_body();
-  std::vector<bool> on_floor(static_cast<std::size_t>(T), false);
-  for (int t = 0; t < T; ++t) {
-    Pose p = copy.frames[std::size_t(t)];
-    detail::lift_feet(p, place.foot_lift);
-    const PosedBody pb = pose_body(body, p);
-    double lowest = std::min(detail::foot_lowest_z(body.sole(), pb.left_foot), detail::foot_lowest_z(body.sole(), pb.right_foot));
-    for (int s = 0; s < kSegmentCount; ++s) {
-      const SegmentShape& seg = body.segments()[std::size_t(s)];
-      if (seg.touches_ground) lowest = std::min({lowest, pb.a[s].z() - seg.radius_a_m, pb.b[s].z() - seg.radius_b_m});
-    }
-    on_floor[std::size_t(t)] = lowest - (place.floor.empty() ? 0.0 : place.floor[std::size_t(t)]) < options.compliance_m;
-  }
+  const detail::FloorSupport support = detail::floor_support(copy, detail::reference_body(), place, options.compliance_m);
+  const std::vector<bool>& on_floor = support.contact;
+  d.carried = detail::carried_fraction(copy, detail::reference_body(), options, support);
   // A stretch without contact is a flight when the centre of mass falls
   // through it (its mean vertical acceleration inside is below -g / 2) and
   // it is no longer than a human flight; otherwise the body is held up by
   // something else. Stretches of 0.15 s or less are too short to tell (their
   // acceleration is that of the take-off and the landing as much as of the flight).
   std::vector<double> z;
-  for (const Pose& p : copy.frames) z.push_back(centre_of_mass(body, p).z());
+  for (const Pose& p : copy.frames) z.push_back(centre_of_mass(detail::reference_body(), p).z());
   const double g = anthropometry::kGravity, fps = copy.fps;
   int unsupported = 0;
   for (int a = 0; a < T;) {
@@ -75,6 +66,10 @@ std::vector<std::string> dynamics_warnings(const std::string& name, const Motion
     out.push_back(name + ": " + percent(d.unsupported) +
                   " of frames have no body surface on the floor while the body is carried: it stands on "
                   "something that is not the floor, and those frames read no load");
+  if (d.carried >= 0.05)
+    out.push_back(name + ": in " + percent(d.carried) +
+                  " of frames the centre of mass stays off the feet without falling: a seat carries part of the "
+                  "body; the feet carry what balances it about the hips, the seat's share is not on the mat");
   return out;
 }
 

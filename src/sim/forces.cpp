@@ -17,20 +17,20 @@ void write_force_table(const ForceTable& f, const std::string& path, bool force)
   rows.reserve(f.time_s.size());
   for (std::size_t t = 0; t < f.time_s.size(); ++t) {
     rows.push_back({f.time_s[t], f.total_n[t], f.total_n[t] / bw, f.foot_n[t][0], f.foot_n[t][1],
-                    f.foot_n[t][0] / bw, f.foot_n[t][1] / bw, f.cop_u[t][0], f.cop_u[t][1]});
+                    f.foot_n[t][0] / bw, f.foot_n[t][1] / bw, f.cop_u[t][0], f.cop_u[t][1], f.carried_n[t] / bw});
     for (std::size_t s = 0; s < 2; ++s) {  // vx, vz, px, py, pz: OpenSim's axes (y up)
       const Eigen::Vector2d p = t < f.cop_m.size() ? f.cop_m[t][s] : Eigen::Vector2d::Zero();
       rows.back().insert(rows.back().end(), {0.0, 0.0, p.y(), 0.0, p.x()});
     }
   }
   std::vector<std::string> columns{"time",       "total_force_vy", "total_force_bw", "l_ground_force_vy",
-                                   "r_ground_force_vy", "l_force_bw", "r_force_bw", "l_cop_u", "r_cop_u"};
+                                   "r_ground_force_vy", "l_force_bw", "r_force_bw", "l_cop_u", "r_cop_u", "carried_bw"};
   for (const char* foot : {"l_ground_force_", "r_ground_force_"})
     for (const char* c : {"vx", "vz", "px", "py", "pz"}) columns.push_back(std::string(foot) + c);
   std::ostringstream note;
   note << std::setprecision(9) << "units: N for *_vy, body weights for *_bw (mass " << f.mass_kg
-       << " kg), cop_u 0 heel .. 1 toe along the foot (nan: unloaded); l_/r_ground_force_v* N and p* m in "
-          "OpenSim's axes, y up (px, pz: the motion's world y, x; 0: unloaded)";
+       << " kg), cop_u 0 heel .. 1 toe along the foot (nan: unloaded), carried_bw the load a seat carries off the "
+          "floor; l_/r_ground_force_v* N and p* m in OpenSim's axes, y up (px, pz: the motion's world y, x; 0: unloaded)";
   write_table_file(path, columns, rows, note.str(), force);
 }
 
@@ -40,6 +40,7 @@ ForceTable force_table(const std::vector<FrameTrace>& trace, const Motion& motio
   for (std::size_t t = 0; t < trace.size(); ++t) {
     f.time_s.push_back(motion.start_s + double(t) / motion.fps);
     f.total_n.push_back(trace[t].load_n);
+    f.carried_n.push_back(trace[t].carried_n);
     std::array<double, 2> n{}, u{};
     std::array<Eigen::Vector2d, 2> at{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
     for (int s = 0; s < 2; ++s) {

@@ -9,27 +9,11 @@
 
 #include <Eigen/Geometry>
 
+#include "core/smooth.hpp"
 #include "ptnet/error.hpp"
 #include "sim_internal.hpp"
 
 namespace ptnet::detail {
-
-std::vector<double> gaussian_smooth(const std::vector<double>& x, double sigma) {
-  if (sigma < 0.3 || x.size() < 2) return x;
-  const int n = int(x.size()), radius = int(std::ceil(3 * sigma));
-  std::vector<double> k(2 * radius + 1);
-  for (int i = -radius; i <= radius; ++i) k[i + radius] = std::exp(-0.5 * i * i / (sigma * sigma));
-  std::vector<double> y(x.size());
-  for (int t = 0; t < n; ++t) {
-    double s = 0, w = 0;
-    for (int i = std::max(-radius, -t); i <= std::min(radius, n - 1 - t); ++i) {
-      s += k[i + radius] * x[t + i];
-      w += k[i + radius];
-    }
-    y[t] = s / w;
-  }
-  return y;
-}
 
 std::vector<double> floor_track(const Motion& motion, const Body& body, double window_s, double max_m) {
   const int T = motion.size();
@@ -261,7 +245,7 @@ std::vector<Eigen::Vector2d> followed_centres(const Motion& motion, const SimOpt
     for (int k = pad; k >= 1; --k) ext.push_back(2 * x[0] - x[std::size_t(k)]);
     ext.insert(ext.end(), x.begin(), x.end());
     for (int k = 1; k <= pad; ++k) ext.push_back(2 * x[std::size_t(T - 1)] - x[std::size_t(T - 1 - k)]);
-    ext = detail::gaussian_smooth(ext, sigma);
+    ext = gaussian_smooth(ext, sigma);
     return std::vector<double>(ext.begin() + pad, ext.begin() + pad + T);
   };
   px = smooth_path(px);

@@ -69,10 +69,36 @@ struct ComTrack {
   std::vector<double> load_n;         // [T] F = m (g + a_z), N
   std::vector<Eigen::Vector2d> zmp;   // [T] zero-moment point (world x, y), m
 };
-ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz);
+// `contact` ([T], or null): the frames with a body surface on the floor
+// (floor_contact); the vertical acceleration is then filtered within each
+// stretch of contact and of none separately.
+ComTrack com_track(const Motion& motion, const Body& body, double com_filter_hz,
+                   const std::vector<bool>* contact = nullptr);
 
-// Gaussian smoothing of a series with sigma in samples, edges renormalised.
-std::vector<double> gaussian_smooth(const std::vector<double>& x, double sigma);
+// What touches the floor in each frame of `motion` (pitch corrected) as
+// `place` lays it (support.cpp).
+struct SupportFrame {
+  std::array<bool, 2> foot_down{};             // [left, right] the sole within the band
+  std::array<Eigen::Vector2d, 2> heel, tip;    // [left, right] the sole's ends (world x, y; m)
+  Eigen::Vector2d seat = Eigen::Vector2d::Zero();  // under the hips (world x, y; m): where a seat carries
+};
+struct FloorSupport {
+  std::vector<bool> contact;        // [T] some body surface (a sole, a segment that touches the ground) within the band
+  std::vector<SupportFrame> frames;  // [T]
+};
+FloorSupport floor_support(const Motion& motion, const Body& body, const MotionPlacement& place, double band_m);
+
+// The share of each frame's load the floor carries (0..1, [T]): 1 but where
+// the zero-moment point stays more than 5 cm outside the feet on the floor
+// for 0.3 s or longer, which only another support explains (a seat: the
+// body does not fall). There the feet carry what balances the load's moment
+// about a seat under the hips (the rest is the seat's, which no mat under
+// the feet senses), and their own load's point moves onto their support
+// (zmp is changed). Smoothed over 0.1 s.
+std::vector<double> seat_share(const FloorSupport& support, std::vector<Eigen::Vector2d>& zmp, double foot_width_m,
+                               double fps);
+// MotionDynamics::carried: the fraction of frames whose seat_share is under 0.98.
+double carried_fraction(const Motion& motion, const Body& body, const SimOptions& options, const FloorSupport& support);
 
 // Rows [first, last] of a frame that may hold pressure; the others are 0
 // (first > last: none).

@@ -79,7 +79,9 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
   for (std::size_t k = 0; k < seeds.size(); ++k) reads.emplace_back(mat, T, motion.fps);
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
-  const detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz);
+  const detail::FloorSupport support = detail::floor_support(motion, body, place, options.compliance_m);
+  detail::ComTrack com = detail::com_track(motion, body, options.com_filter_hz, &support.contact);
+  const std::vector<double> share = detail::seat_share(support, com.zmp, body.sole().width_m, motion.fps);
   const std::vector<double> floor = place.floor.empty() ? std::vector<double>(std::size_t(T), 0.0) : place.floor;
   detail::Rasteriser raster(mat, options.subsamples, options.compliance_m + options.max_sink_m);
   detail::Foundation foundation(raster.depth().grid, options.compliance_m, options.max_sink_m);
@@ -101,10 +103,11 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
     raster.rasterise(body, pose_body(body, local), trace != nullptr);
     const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
     const Eigen::Vector2d zmp(place.axis.dot(d), place.left.dot(d));
+    const double load = share[std::size_t(t)] * com.load_n[std::size_t(t)];
+    FrameTrace* ft = trace ? &(*trace)[std::size_t(t)] : nullptr;
     const detail::RowSpan pressed =
-        foundation.distribute(raster.depth(), com.load_n[std::size_t(t)], stiffness,
-                              options.balance_moments ? &zmp : nullptr, frame,
-                              trace ? &(*trace)[std::size_t(t)] : nullptr);
+        foundation.distribute(raster.depth(), load, stiffness, options.balance_moments ? &zmp : nullptr, frame, ft);
+    if (ft && raster.depth().zlo < options.compliance_m) ft->carried_n = com.load_n[std::size_t(t)] - load;
     // The other readings' frames are all zero outside the pressed rows too.
     const std::size_t first = std::size_t(std::max(0, pressed.first)) * std::size_t(mat.cols);
     const std::size_t end = std::size_t(std::min(mat.rows, pressed.last + 1)) * std::size_t(mat.cols);
