@@ -84,16 +84,21 @@ TEST(ForceTable, WrittenAsOpenSimStorageAndCsv) {
   f.total_n = {686.7, 0};
   f.foot_n = {{686.7, 0}, {0, 0}};
   f.cop_u = {{0.5, NAN}, {NAN, NAN}};
+  f.carried_n = {0, 0};
   const fs::path dir = fs::temp_directory_path() / ("ptnet_forces_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   ptnet::write_force_table(f, (dir / "a.mot").string(), false);
   ptnet::write_force_table(f, (dir / "a.csv").string(), false);
   EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.csv").string(), false), ptnet::Error);  // no --force
   EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.txt").string(), false), ptnet::Error);
+  ptnet::ForceTable short_seat = f;
+  short_seat.carried_n.pop_back();  // a column of another length: refused, nothing written
+  EXPECT_THROW(ptnet::write_force_table(short_seat, (dir / "b.mot").string(), false), ptnet::Error);
+  EXPECT_FALSE(fs::exists(dir / "b.mot"));
   const std::string mot = ptnet::read_text_file((dir / "a.mot").string());
-  EXPECT_NE(mot.find("nRows=2\nnColumns=9\n"), std::string::npos);
+  EXPECT_NE(mot.find("nRows=2\nnColumns=10\n"), std::string::npos);
   EXPECT_NE(mot.find("endheader\ntime\ttotal_force_vy\ttotal_force_bw\tl_ground_force_vy"), std::string::npos);
-  EXPECT_NE(mot.find("0\t686.7\t1\t686.7\t0\t1\t0\t0.5\tnan\n"), std::string::npos) << mot;
+  EXPECT_NE(mot.find("0\t686.7\t1\t686.7\t0\t1\t0\t0.5\tnan\t0\n"), std::string::npos) << mot;
   const std::string csv = ptnet::read_text_file((dir / "a.csv").string());
   EXPECT_EQ(csv.rfind("time,total_force_vy,total_force_bw,", 0), 0u);
   fs::remove_all(dir);
@@ -102,8 +107,9 @@ TEST(PhysicsBench, TheSimulatorMeetsThePlatesOfRealWalkingAndRunning) {
   const std::string dir = PTNET_SHARED_GAIT;
   if (!fs::exists(dir + "/walk_s01.trc")) GTEST_SKIP() << "../shared/real-gait not found";
   const auto trials = ptnet::read_gait_trials(std::string(PTNET_SOURCE_DIR) + "/bench/real-gait.csv", dir);
-  ASSERT_EQ(trials.size(), 2u);
+  ASSERT_GE(trials.size(), 2u);
   for (const auto& trial : trials) {
+    if (trial.name != "walk_s01" && trial.name != "run_s02") continue;  // the other labs: plates_activities_test
     SCOPED_TRACE(trial.name);
     const ptnet::GaitTrialResult r = ptnet::run_gait_trial(trial, {});
     const ptnet::ForceSource &s = r.simulated, &n = r.naive;

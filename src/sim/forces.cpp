@@ -12,6 +12,13 @@
 namespace ptnet {
 
 void write_force_table(const ForceTable& f, const std::string& path, bool force) {
+  const std::size_t T = f.time_s.size();
+  if (f.total_n.size() != T || f.foot_n.size() != T || f.cop_u.size() != T || f.carried_n.size() != T)
+    throw Error::in(path, "a force table's columns must have one value per time (" + std::to_string(T) +
+                              "); found total " + std::to_string(f.total_n.size()) + ", feet " +
+                              std::to_string(f.foot_n.size()) + ", cop " + std::to_string(f.cop_u.size()) +
+                              ", carried " + std::to_string(f.carried_n.size()));
+  if (!(f.mass_kg > 0)) throw Error::in(path, "a force table's mass must be positive, found " + std::to_string(f.mass_kg));
   const double bw = f.mass_kg * anthropometry::kGravity;
   std::vector<std::vector<double>> rows;
   rows.reserve(f.time_s.size());
