@@ -96,6 +96,10 @@ TEST(ForceTable, WrittenAsOpenSimStorageAndCsv) {
   ptnet::write_force_table(f, (dir / "a.csv").string(), false);
   EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.csv").string(), false), ptnet::Error);  // no --force
   EXPECT_THROW(ptnet::write_force_table(f, (dir / "a.txt").string(), false), ptnet::Error);
+  ptnet::ForceTable short_seat = f;
+  short_seat.carried_n.pop_back();  // a column of another length: refused, nothing written
+  EXPECT_THROW(ptnet::write_force_table(short_seat, (dir / "b.mot").string(), false), ptnet::Error);
+  EXPECT_FALSE(fs::exists(dir / "b.mot"));
   const std::string mot = ptnet::read_text_file((dir / "a.mot").string());
   EXPECT_NE(mot.find("nRows=2\nnColumns=20\n"), std::string::npos);
   EXPECT_NE(mot.find("endheader\ntime\ttotal_force_vy\ttotal_force_bw\tl_ground_force_vy"), std::string::npos);
@@ -110,8 +114,9 @@ TEST(PhysicsBench, TheSimulatorMeetsThePlatesOfRealWalkingAndRunning) {
   const std::string dir = PTNET_SHARED_GAIT;
   if (!fs::exists(dir + "/walk_s01.trc")) GTEST_SKIP() << "../shared/real-gait not found";
   const auto trials = ptnet::read_gait_trials(std::string(PTNET_SOURCE_DIR) + "/bench/real-gait.csv", dir);
-  ASSERT_EQ(trials.size(), 2u);
+  ASSERT_GE(trials.size(), 2u);
   for (const auto& trial : trials) {
+    if (trial.name != "walk_s01" && trial.name != "run_s02") continue;  // the other labs: plates_activities_test
     SCOPED_TRACE(trial.name);
     const ptnet::GaitTrialResult r = ptnet::run_gait_trial(trial, {});
     const ptnet::ForceSource &s = r.simulated, &n = r.naive;

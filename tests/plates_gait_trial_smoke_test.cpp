@@ -48,7 +48,7 @@ TEST(CliGaitTrial, PhysicsBenchWritesThePageAndRefusesToOverwrite) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("walk       simulated"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("walk       naive"), std::string::npos) << r.out;
-  for (const char* f : {"index.html", "results.json", "walk_sim.mot", "walk_frames.csv", "walk_total.svg", "walk_feet.svg"})
+  for (const char* f : {"index.html", "results.json", "walk_sim.mot", "walk_frames.csv", "walk_total.svg", "walk_feet.svg", "walk_cop.svg"})
     EXPECT_TRUE(fs::exists(d.path / "phys" / f)) << f;
   const nlohmann::json j = nlohmann::json::parse(slurp(d.path / "phys" / "results.json"));
   ASSERT_EQ(j.size(), 1u);

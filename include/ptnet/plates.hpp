@@ -131,8 +131,9 @@ std::vector<std::string> check_gait_result(const GaitTrialResult& result, const 
 
 // `out_dir`/results.json, index.html (force against time, per trial), and
 // per trial <trial>_sim.mot (the simulator's forces), <trial>_frames.csv
-// (every frame of plates, simulator and naive reference), <trial>_total.svg
-// and <trial>_feet.svg; refuses to overwrite unless `force`.
+// (every frame of plates, simulator and naive reference), <trial>_total.svg,
+// <trial>_feet.svg and <trial>_cop.svg (the CoP along each loaded foot);
+// refuses to overwrite unless `force`.
 // (check_physics_report first; the files appear together at the end, or none).
 void write_physics_report(const std::vector<GaitTrialResult>& results, const std::string& out_dir, bool force);
 // What write_physics_report checks before it writes, for before the work:

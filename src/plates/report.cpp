@@ -62,22 +62,29 @@ void write_series(const GaitTrialResult& r, const std::string& path, bool force)
 
 std::string cell(double v, int digits) { return std::isfinite(v) ? fixed_text(v, digits) : "&ndash;"; }
 
-std::string chart(const GaitTrialResult& r, bool by_foot) {
+// The three figures of a trial: the total force, the force per foot, and
+// the centre of pressure along each loaded foot (0 heel, 1 toe tip).
+enum class Chart { total, feet, cop };
+
+std::string chart(const GaitTrialResult& r, Chart kind) {
   LineChart c;
-  c.title = r.trial.name + (by_foot ? ": vertical force per foot" : ": total vertical force");
+  c.title = r.trial.name + (kind == Chart::total  ? ": total vertical force"
+                            : kind == Chart::feet ? ": vertical force per foot"
+                                                  : ": centre of pressure along the foot");
   c.x_label = "time (s)";
-  c.y_label = "force (body weights)";
+  c.y_label = kind == Chart::cop ? "CoP along the foot (0 heel, 1 toe)" : "force (body weights)";
   c.width = 900;
   c.points = false;
   for (const ForceSource* s : {&r.plates, &r.simulated, &r.naive}) {
-    if (!by_foot) {
+    if (kind == Chart::total) {
       c.series.push_back({s->name, r.time_s, s->total_bw});
       continue;
     }
     if (s == &r.naive) continue;
     for (int f = 0; f < 2; ++f) {
       LineSeries l{s->name + (f == 0 ? " left" : " right"), r.time_s, {}};
-      for (const auto& v : s->foot_bw) l.y.push_back(v[std::size_t(f)]);
+      for (std::size_t t = 0; t < r.time_s.size(); ++t)
+        l.y.push_back(kind == Chart::feet ? s->foot_bw[t][std::size_t(f)] : s->cop_u[t][std::size_t(f)]);
       c.series.push_back(std::move(l));
     }
   }
@@ -97,7 +104,8 @@ void check_physics_report(const std::vector<GaitTrial>& trials, const std::strin
   for (const GaitTrial& t : trials) {
     if (const std::string problem = name_problem(t.name); !problem.empty())
       throw Error::in(out_dir, "trial name " + escaped(t.name) + " " + problem + ": it names the trial's files");
-    for (const char* suffix : {"_sim.mot", "_frames.csv", "_total.svg", "_feet.svg"}) files.push_back(t.name + suffix);
+    for (const char* suffix : {"_sim.mot", "_frames.csv", "_total.svg", "_feet.svg", "_cop.svg"})
+      files.push_back(t.name + suffix);
   }
   if (const std::string twice = first_repeat(files); !twice.empty())
     throw Error::in(out_dir, "two trials would write " + escaped(twice) + ": every trial needs a name of its own");
@@ -125,8 +133,9 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
   for (const auto& r : results) {
     write_force_table(r.table, path(r.trial.name + "_sim.mot"), force);
     write_series(r, path(r.trial.name + "_frames.csv"), force);
-    write_text_file(path(r.trial.name + "_total.svg"), chart(r, false), force);
-    write_text_file(path(r.trial.name + "_feet.svg"), chart(r, true), force);
+    write_text_file(path(r.trial.name + "_total.svg"), chart(r, Chart::total), force);
+    write_text_file(path(r.trial.name + "_feet.svg"), chart(r, Chart::feet), force);
+    write_text_file(path(r.trial.name + "_cop.svg"), chart(r, Chart::cop), force);
     nlohmann::ordered_json j;
     j["trial"] = r.trial.name;
     j["body"] = {{"sex", sex_name(r.trial.body.sex)},
@@ -166,7 +175,8 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
       << (r.carried_frames > 0 ? " (" + std::to_string(r.carried_frames) + " carried by a seat left out)" : std::string())
       << (r.belt_mps > 0 ? "; treadmill belt " + fixed_text(r.belt_mps, 2) + " m/s removed" : std::string()) << ".</p>\n"
       << "<img src=\"" << html_escape(r.trial.name) << "_total.svg\" alt=\"total vertical force\">\n"
-      << "<img src=\"" << html_escape(r.trial.name) << "_feet.svg\" alt=\"vertical force per foot\">\n";
+      << "<img src=\"" << html_escape(r.trial.name) << "_feet.svg\" alt=\"vertical force per foot\">\n"
+      << "<img src=\"" << html_escape(r.trial.name) << "_cop.svg\" alt=\"centre of pressure along the foot\">\n";
   write_text_file(path("results.json"), all.dump(2) + "\n", force);
   write_text_file(path("index.html"), html_page("ptnet physics bench", b.str()), force);
   report.commit();

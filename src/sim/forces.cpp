@@ -12,6 +12,15 @@
 namespace ptnet {
 
 void write_force_table(const ForceTable& f, const std::string& path, bool force) {
+  const std::size_t T = f.time_s.size();
+  if (f.total_n.size() != T || f.foot_n.size() != T || f.cop_u.size() != T || f.carried_n.size() != T ||
+      (!f.cop_m.empty() && f.cop_m.size() != T))
+    throw Error::in(path, "a force table's columns must have one value per time (" + std::to_string(T) +
+                              "); found total " + std::to_string(f.total_n.size()) + ", feet " +
+                              std::to_string(f.foot_n.size()) + ", cop " + std::to_string(f.cop_u.size()) +
+                              ", carried " + std::to_string(f.carried_n.size()) + ", cop_m " +
+                              std::to_string(f.cop_m.size()));
+  if (!(f.mass_kg > 0)) throw Error::in(path, "a force table's mass must be positive, found " + std::to_string(f.mass_kg));
   const double bw = f.mass_kg * anthropometry::kGravity;
   std::vector<std::vector<double>> rows;
   rows.reserve(f.time_s.size());
@@ -19,7 +28,7 @@ void write_force_table(const ForceTable& f, const std::string& path, bool force)
     rows.push_back({f.time_s[t], f.total_n[t], f.total_n[t] / bw, f.foot_n[t][0], f.foot_n[t][1],
                     f.foot_n[t][0] / bw, f.foot_n[t][1] / bw, f.cop_u[t][0], f.cop_u[t][1], f.carried_n[t] / bw});
     for (std::size_t s = 0; s < 2; ++s) {  // vx, vz, px, py, pz: OpenSim's axes (y up)
-      const Eigen::Vector2d p = t < f.cop_m.size() ? f.cop_m[t][s] : Eigen::Vector2d::Zero();
+      const Eigen::Vector2d p = f.cop_m.empty() ? Eigen::Vector2d::Zero() : f.cop_m[t][s];
       rows.back().insert(rows.back().end(), {0.0, 0.0, p.y(), 0.0, p.x()});
     }
   }

@@ -81,6 +81,8 @@ struct SupportFrame {
   std::array<bool, 2> foot_down{};             // [left, right] the sole within the band
   std::array<Eigen::Vector2d, 2> heel, tip;    // [left, right] the sole's ends (world x, y; m)
   Eigen::Vector2d seat = Eigen::Vector2d::Zero();  // under the hips (world x, y; m): where a seat carries
+  bool seat_possible = false;                       // the hips low enough to sit (kSeatHipHeight)
+  std::vector<Eigen::Vector2d> other;               // other surfaces on the floor (hands, knees: world x, y; m)
 };
 struct FloorSupport {
   std::vector<bool> contact;        // [T] some body surface (a sole, a segment that touches the ground) within the band

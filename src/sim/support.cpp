@@ -16,6 +16,12 @@ constexpr double kOffSupportM = 0.05;  // m: the load's point this far outside t
 constexpr double kCarriedMinS = 0.3;   // s: ... for at least this long (shorter: capture error, a stumble)
 constexpr double kShareSmoothS = 0.1;  // s: Gaussian sigma of the feet's share (no step in the load)
 constexpr double kCarriedShare = 0.98;  // a frame whose feet carry less is carried (MotionDynamics::carried)
+// A seat carries only hips this low (fraction of stature above the floor):
+// seated, the hip joints are ~0.30 H up (a 0.45 m chair), standing 0.53 H;
+// a body whose load leaves its feet with the hips higher (an arabesque, a
+// pirouette's spin) is the capture's or the point-mass model's error, not
+// a seat.
+constexpr double kSeatHipHeight = 0.40;
 
 // Distance from p to the segment a-b (horizontal).
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
@@ -83,10 +89,15 @@ FloorSupport floor_support(const Motion& motion, const Body& body, const MotionP
     }
     for (int s = 0; s < kSegmentCount; ++s) {
       const SegmentShape& seg = body.segments()[std::size_t(s)];
-      if (seg.touches_ground)
-        lowest = std::min({lowest, pb.a[s].z() - seg.radius_a_m - floor, pb.b[s].z() - seg.radius_b_m - floor});
+      if (!seg.touches_ground) continue;
+      const double za = pb.a[s].z() - seg.radius_a_m - floor, zb = pb.b[s].z() - seg.radius_b_m - floor;
+      lowest = std::min({lowest, za, zb});
+      if (za < band_m) f.other.push_back(pb.a[s].head<2>());
+      if (zb < band_m) f.other.push_back(pb.b[s].head<2>());
     }
-    f.seat = 0.5 * (p[kLeftHip] + p[kRightHip]).head<2>();
+    const Eigen::Vector3d hips = 0.5 * (p[kLeftHip] + p[kRightHip]);
+    f.seat = hips.head<2>();
+    f.seat_possible = hips.z() - floor < kSeatHipHeight * body.height_m();
     out.contact[std::size_t(t)] = lowest < band_m;
   }
   return out;
@@ -100,11 +111,11 @@ std::vector<double> seat_share(const FloorSupport& support, std::vector<Eigen::V
   std::vector<bool> off(T, false);
   for (std::size_t t = 0; t < T; ++t) {
     const SupportFrame& f = support.frames[t];
-    std::vector<Eigen::Vector2d> points;
+    std::vector<Eigen::Vector2d> points = f.other;  // every surface on the floor supports
     for (int s = 0; s < 2; ++s)
       if (f.foot_down[std::size_t(s)]) points.push_back(f.heel[std::size_t(s)]), points.push_back(f.tip[std::size_t(s)]);
     const double d = points.empty() ? 1e300 : hull_distance(zmp[t], points, &nearest[t]) - 0.5 * foot_width_m;
-    off[t] = d < 1e299 && d > kOffSupportM;
+    off[t] = f.seat_possible && d < 1e299 && d > kOffSupportM;
   }
   const std::size_t min_run = std::size_t(std::max(1.0, std::round(kCarriedMinS * fps)));
   for (std::size_t a = 0; a < T;) {
