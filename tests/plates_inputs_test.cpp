@@ -17,6 +17,7 @@
 #include "plates/plates_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/markers.hpp"
 #include "ptnet/plates.hpp"
 #include "ptnet/sim.hpp"
 
@@ -194,4 +195,31 @@ TEST(GaitResults, NothingComparedIsAnErrorAndAPartialOverlapAWarning) {
   GaitTrialResult none = result_with_plates(std::vector<double>(100, 1.0));
   none.compared.assign(100, false);
   EXPECT_NE(error_of([&] { check_gait_result(none, o); }).find("no frame compared"), std::string::npos);
+}
+
+// physics-bench converts a trial once: the lab's positions (where the
+// plates' CoP is) read without removing the treadmill's belt, and the belt
+// the marker pipeline reports taken out for the simulator, bit for bit the
+// motion read with remove_belt (before: the pipeline reported no belt when
+// it removed none, so the bench converted the trial, and read its static
+// trial, twice).
+TEST(GaitTrials, OneConversionGivesTheLabAndTheMotionWithoutTheBelt) {
+  const std::string dir = std::string(PTNET_TEST_DATA) + "/gait";
+  const Trc trc = read_trc(dir + "/walk.trc");
+  MotionOptions o;
+  o.fps = trc.rate_hz;
+  o.static_markers = dir + "/walk_static.trc";
+  MarkerReport removed, kept;
+  const Motion source = motion_from_trc(trc, o, &removed);
+  o.remove_belt = false;
+  const Motion lab = motion_from_trc(trc, o, &kept);
+  ASSERT_GT(removed.belt_speed_mps, 0.5);  // the committed trial is on a treadmill
+  EXPECT_EQ(kept.belt_velocity_mps, removed.belt_velocity_mps);
+  EXPECT_EQ(kept.belt_speed_mps, removed.belt_speed_mps);
+  const Motion back = without_belt(lab, kept.belt_velocity_mps);
+  ASSERT_EQ(back.size(), source.size());
+  for (int t = 0; t < source.size(); ++t)
+    for (std::size_t j = 0; j < source.frames[std::size_t(t)].size(); ++j)
+      ASSERT_EQ(back.frames[std::size_t(t)][j], source.frames[std::size_t(t)][j]) << t << " " << j;
+  EXPECT_NE(lab.frames.back()[0], source.frames.back()[0]);  // the lab moved with the belt
 }

@@ -102,9 +102,10 @@ struct MarkerReport {
   double stature_m = 0;                    // the subject's estimated stature (the offsets' H)
   std::string stature_from;                // how: "static trial (median standing hip height)", ...
   bool upper_body_assumed = false;         // no trunk marker: trunk, head and arms placed from the pelvis
-  double belt_speed_mps = 0;               // treadmill belt removed (0: none)
-  // The belt's velocity (world x, y; m/s) removed: the lab's positions are
-  // without_belt(motion, -belt_velocity_mps) (zero: none removed).
+  double belt_speed_mps = 0;               // treadmill belt found (0: none), removed when options.remove_belt
+  // The belt's velocity (world x, y; m/s): a motion read without removing
+  // it (the lab's positions) is the one read with it removed after
+  // without_belt(motion, belt_velocity_mps) (zero: no belt).
   Eigen::Vector2d belt_velocity_mps = Eigen::Vector2d::Zero();
 };
 

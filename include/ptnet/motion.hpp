@@ -154,6 +154,12 @@ Motion motion_from_bvh(const Bvh& bvh, const MotionOptions& options);
 // A BVH file, or a marker file for a path ending in .trc (motion_from_trc).
 Motion load_motion(const std::string& path, const MotionOptions& options);
 
+// The motion as if overground: every joint moved by -velocity * t (t from
+// its first frame; velocity in world x, y, m/s): a treadmill trial's lab
+// positions (read without remove_belt) with the belt its MarkerReport finds
+// (belt_velocity_mps) taken out, as remove_belt does.
+Motion without_belt(Motion motion, const Eigen::Vector2d& velocity);
+
 // Standing height (m) of the first frames: top of head (head joint plus head
 // length) above the lowest foot point.
 double standing_height(const Motion& motion);

@@ -31,7 +31,7 @@ Motion motion_from_bvh(const Bvh& source, const MotionOptions& options) {
     bvh = &trimmed;
   }
   Bvh resampled;
-  if (options.fps > 0 && !detail::same_rate(bvh->fps(), options.fps)) {
+  if (options.fps > 0 && !same_rate(bvh->fps(), options.fps)) {
     resampled = resample(*bvh, options.fps);
     bvh = &resampled;
   }

@@ -158,7 +158,7 @@ Motion joints(const PreparedTrial& p, double h, const std::array<double, 2>& pit
 }
 
 Motion from_trc(const Trc& trc, Trc* owned, const MotionOptions& options, MarkerReport* report) {
-  if (!(options.fps > 0 && detail::same_rate(trc.rate_hz, options.fps))) detail::check_read_fps(options);
+  if (!(options.fps > 0 && same_rate(trc.rate_hz, options.fps))) detail::check_read_fps(options);
   if (trc.frames() < 2) throw Error::in(trc.source, "expected at least 2 frames, found " + std::to_string(trc.frames()));
   check_range("max_gap_s", options.max_gap_s, Range{0, 10});
   const ChosenMap chosen = choose_map(trc, options.marker_map);
@@ -181,14 +181,11 @@ Motion from_trc(const Trc& trc, Trc* owned, const MotionOptions& options, Marker
     methods.push_back("toe joints: pitched to the canonical flat foot of the static trial (left " +
                       fixed_text(st->foot_pitch[0] * 180 / M_PI, 1) + ", right " +
                       fixed_text(st->foot_pitch[1] * 180 / M_PI, 1) + " degrees)");
-  if (options.fps > 0 && !detail::same_rate(m.fps, options.fps)) m = detail::resample_linear(m, options.fps);
+  if (options.fps > 0 && !same_rate(m.fps, options.fps)) m = detail::resample_linear(m, options.fps);
   if (options.fps > 0) m.fps = options.fps;
   detail::ground(m);
-  Eigen::Vector2d belt = Eigen::Vector2d::Zero();
-  if (options.remove_belt) {
-    belt = treadmill_belt_velocity(m);
-    if (belt.norm() > 0) m = without_belt(std::move(m), belt);
-  }
+  const Eigen::Vector2d belt = treadmill_belt_velocity(m);  // reported, removed or not
+  if (options.remove_belt && belt.norm() > 0) m = without_belt(std::move(m), belt);
   if (report) {
     fill_report(*report, p, chosen.map, rebuilt);
     report->methods = methods;

@@ -42,8 +42,7 @@ Bvh resample(const Bvh& bvh, double fps);
 // near the floor, when that is over 0.3 m/s while the pelvis travels less
 // than a third as fast; zero for a motion overground.
 Eigen::Vector2d treadmill_belt_velocity(const Motion& motion);
-// The motion as if overground: every joint moved by -velocity * t.
-Motion without_belt(Motion motion, const Eigen::Vector2d& velocity);
+// without_belt: ptnet/motion.hpp.
 
 // Metres per unit of a named unit (0 for Units::automatic).
 double unit_metres(Units units);
@@ -83,7 +82,6 @@ void ground(Motion& motion);
 void check_read_fps(const MotionOptions& options);
 // A file recorded at `file_fps` is read as it is for `fps` when
 // same_rate(file_fps, fps) (core/rate.hpp); the motion is then at `fps`.
-using ptnet::same_rate;
 
 // The motion at `fps`, each joint interpolated linearly between the frames
 // either side (positions of a marker recording, not rotations).

@@ -163,6 +163,17 @@ PlateFeet plate_feet(const ForcePlates& fp, const Motion& lab, int up, const Phy
   return out;
 }
 
+// The contacts of each foot's force ([2][N], N) at times `time_s` ([N]),
+// in the order they start.
+std::vector<Contact> foot_contacts(const std::vector<double>& time_s, const std::array<std::vector<double>, 2>& feet_n,
+                                   double contact_n) {
+  std::vector<Contact> out;
+  for (int k = 0; k < 2; ++k)
+    for (const Contact& c : find_contacts(time_s, feet_n[std::size_t(k)], contact_n, k)) out.push_back(c);
+  std::sort(out.begin(), out.end(), [](const Contact& a, const Contact& b) { return a.start_s < b.start_s; });
+  return out;
+}
+
 ForceSource plates_source(const ForcePlates& fp, const PlateFeet& pf, const std::vector<double>& time_s, double dt,
                           double bw, const PhysicsBenchOptions& o) {
   ForceSource s;
@@ -172,7 +183,6 @@ ForceSource plates_source(const ForcePlates& fp, const PlateFeet& pf, const std:
   for (int k = 0; k < 2; ++k) {
     f[k] = detail::resample_box(fp.time_s, pf.force_n[k], time_s, dt);
     fu[k] = detail::resample_box(fp.time_s, pf.force_u[k], time_s, dt);
-    for (const Contact& c : find_contacts(fp.time_s, pf.force_n[k], o.contact_n, k)) s.contacts.push_back(c);
   }
   for (std::size_t t = 0; t < time_s.size(); ++t) {
     s.total_bw.push_back(total[t] / bw);
@@ -184,32 +194,61 @@ ForceSource plates_source(const ForcePlates& fp, const PlateFeet& pf, const std:
     s.foot_bw.push_back(fb);
     s.cop_u.push_back(u);
   }
-  std::sort(s.contacts.begin(), s.contacts.end(), [](const Contact& a, const Contact& b) { return a.start_s < b.start_s; });
+  s.contacts = foot_contacts(fp.time_s, pf.force_n, o.contact_n);
   return s;
 }
 
-// The simulator's (naive false) or the naive reference's (true) force.
-ForceSource model_source(const ForceTable& table, double bw, bool naive, const PhysicsBenchOptions& o) {
+// The simulator's force (ForceTable) as a source.
+ForceSource simulated_source(const ForceTable& table, double bw, const PhysicsBenchOptions& o) {
   ForceSource s;
-  s.name = naive ? "naive" : "simulated";
+  s.name = "simulated";
+  std::array<std::vector<double>, 2> feet;
+  for (std::size_t t = 0; t < table.time_s.size(); ++t) {
+    std::array<double, 2> fb{}, u{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      fb[k] = table.foot_n[t][k] / bw;
+      u[k] = table.cop_u[t][k];
+      feet[k].push_back(fb[k] * bw);
+    }
+    s.total_bw.push_back(table.total_n[t] / bw);
+    s.foot_bw.push_back(fb);
+    s.cop_u.push_back(u);
+  }
+  s.contacts = foot_contacts(table.time_s, feet, o.contact_n);
+  return s;
+}
+
+// The naive reference: one body weight shared by the feet the simulator
+// puts in contact, each pressing at its middle.
+ForceSource naive_source(const ForceTable& table, double bw, const PhysicsBenchOptions& o) {
+  ForceSource s;
+  s.name = "naive";
   std::array<std::vector<double>, 2> feet;
   for (std::size_t t = 0; t < table.time_s.size(); ++t) {
     const bool on[2] = {table.foot_n[t][0] > o.contact_n, table.foot_n[t][1] > o.contact_n};
     const int count = on[0] + on[1];
     std::array<double, 2> fb{}, u{};
-    for (int k = 0; k < 2; ++k) {
-      fb[k] = naive ? (on[k] ? 1.0 / count : 0.0) : table.foot_n[t][std::size_t(k)] / bw;
-      u[k] = naive ? (on[k] ? 0.5 : NAN) : table.cop_u[t][std::size_t(k)];
+    for (std::size_t k = 0; k < 2; ++k) {
+      fb[k] = on[k] ? 1.0 / count : 0.0;
+      u[k] = on[k] ? 0.5 : NAN;
       feet[k].push_back(fb[k] * bw);
     }
-    s.total_bw.push_back(naive ? (count ? 1.0 : 0.0) : table.total_n[t] / bw);
+    s.total_bw.push_back(count ? 1.0 : 0.0);
     s.foot_bw.push_back(fb);
     s.cop_u.push_back(u);
   }
-  for (int k = 0; k < 2; ++k)
-    for (const Contact& c : find_contacts(table.time_s, feet[k], o.contact_n, k)) s.contacts.push_back(c);
-  std::sort(s.contacts.begin(), s.contacts.end(), [](const Contact& a, const Contact& b) { return a.start_s < b.start_s; });
+  s.contacts = foot_contacts(table.time_s, feet, o.contact_n);
   return s;
+}
+
+// What a source's figures are compared by: the thresholds of `o` for a
+// body of weight `bw` (N).
+detail::CompareOptions compare_options(const PhysicsBenchOptions& o, double bw) {
+  detail::CompareOptions co;
+  co.flight_bw = o.flight_bw;
+  co.contact_bw = o.contact_n / bw;
+  co.weight_n = bw;
+  return co;
 }
 
 // The frames the figures are over (GaitTrial::coverage): all of them when
@@ -255,10 +294,10 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   mo.fps = o.fps > 0 ? o.fps : trc.rate_hz;
   mo.static_markers = trial.static_markers;
   mo.marker_map = trial.marker_map;
+  mo.remove_belt = false;  // the lab's positions, where the plates' CoP is
   MarkerReport report;
-  const Motion source = motion_from_trc(trc, mo, &report);
-  mo.remove_belt = false;
-  const Motion lab = motion_from_trc(trc, mo);  // the lab's positions: where the plates' CoP is
+  const Motion lab = motion_from_trc(trc, mo, &report);  // once, the static trial with it
+  const Motion source = without_belt(lab, report.belt_velocity_mps);  // the belt the pipeline found taken out
   const Body body(trial.body);
   const double h = trial.body.height_cm;
   std::vector<FrameTrace> trace;
@@ -268,22 +307,18 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   r.trial = trial;
   r.fps = source.fps;
   r.belt_mps = report.belt_speed_mps;
-  r.table = force_table(trace, source, body);
+  r.table = force_table(trace, lab, body);  // each foot's CoP in the lab, as the plates'
   r.time_s = r.table.time_s;
   const double bw = body.mass_kg() * anthropometry::kGravity;
   const ForcePlates fp = read_force_plates(trial.plates.empty() ? trial.markers : trial.plates, o.contact_n);
   const int up = report.up_axis == UpAxis::y ? 1 : 2;
-  const PlateFeet pf = plate_feet(fp, lab, up, o);
-  r.plates = plates_source(fp, pf, r.time_s, 1 / r.fps, bw, o);
-  r.simulated = model_source(r.table, bw, false, o);
-  r.naive = model_source(r.table, bw, true, o);
-  detail::CompareOptions co;
-  co.flight_bw = o.flight_bw;
-  co.contact_bw = o.contact_n / bw;
-  co.weight_n = bw;
+  r.plates = plates_source(fp, plate_feet(fp, lab, up, o), r.time_s, 1 / r.fps, bw, o);
+  r.simulated = simulated_source(r.table, bw, o);
+  r.naive = naive_source(r.table, bw, o);
+  const detail::CompareOptions co = compare_options(o, bw);
   choose_compared_frames(r, trial.coverage, co);
-  detail::compare_with_plates(r.simulated, r.plates, r.time_s, r.compared, co);
-  detail::compare_with_plates(r.naive, r.plates, r.time_s, r.compared, co);
+  detail::compare_with_plates(r.simulated, r.plates, {r.time_s, r.compared}, co);
+  detail::compare_with_plates(r.naive, r.plates, {r.time_s, r.compared}, co);
   for (std::size_t t = 0; t < r.time_s.size(); ++t) {
     if (!r.compared[t]) continue;
     r.flight_frames += r.plates.total_bw[t] < o.flight_bw;

@@ -85,49 +85,64 @@ double overlap(const Contact& a, const Contact& b) {
   return std::min(a.end_s, b.end_s) - std::max(a.start_s, b.start_s);
 }
 
-}  // namespace
-
-void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::vector<double>& time_s,
-                         const std::vector<bool>& compared, const CompareOptions& o) {
-  // Total force over the frames both have.
+// RMS difference of the total force over the compared frames both have.
+double force_rmse(const ForceSource& s, const ForceSource& plates, const Frames& f) {
   double se = 0;
-  int n = 0, flight = 0, flight_hit = 0;
-  for (std::size_t t = 0; t < time_s.size(); ++t) {
-    if (!compared[t] || !std::isfinite(plates.total_bw[t]) || !std::isfinite(s.total_bw[t])) continue;
+  int n = 0;
+  for (std::size_t t = 0; t < f.time_s.size(); ++t) {
+    if (!f.compared[t] || !std::isfinite(plates.total_bw[t]) || !std::isfinite(s.total_bw[t])) continue;
     const double d = s.total_bw[t] - plates.total_bw[t];
     se += d * d, ++n;
+  }
+  return n ? std::sqrt(se / n) : NAN;
+}
+
+// The fraction of the plates' flight frames (compared, both known) in
+// flight here too.
+double flight_recall(const ForceSource& s, const ForceSource& plates, const Frames& f, const CompareOptions& o) {
+  int flight = 0, hit = 0;
+  for (std::size_t t = 0; t < f.time_s.size(); ++t) {
+    if (!f.compared[t] || !std::isfinite(plates.total_bw[t]) || !std::isfinite(s.total_bw[t])) continue;
     if (plates.total_bw[t] < o.flight_bw) {
       ++flight;
-      flight_hit += s.total_bw[t] < o.flight_bw;
+      hit += s.total_bw[t] < o.flight_bw;
     }
   }
-  s.rmse_bw = n ? std::sqrt(se / n) : NAN;
-  s.flight_recall = flight ? double(flight_hit) / flight : NAN;
-  // Contacts matched to the plates' by the largest overlap, foot by foot.
-  std::vector<double> peak, stance, rate;
-  s.matched = 0;
+  return flight ? double(hit) / flight : NAN;
+}
+
+// The plates' stances (whole, at least stance_bw at their peak, every
+// frame compared), each with the contact of s of the same foot that
+// overlaps it most; stances s misses are left out.
+std::vector<std::pair<const Contact*, const Contact*>> matched_stances(const ForceSource& s, const ForceSource& plates,
+                                                                      const Frames& f, const CompareOptions& o) {
   const auto all_compared = [&](const Contact& c) {
-    for (std::size_t t = 0; t < time_s.size(); ++t)
-      if (time_s[t] >= c.start_s && time_s[t] <= c.end_s && !compared[t]) return false;
+    for (std::size_t t = 0; t < f.time_s.size(); ++t)
+      if (f.time_s[t] >= c.start_s && f.time_s[t] <= c.end_s && !f.compared[t]) return false;
     return true;
   };
+  std::vector<std::pair<const Contact*, const Contact*>> out;  // plates', s's
   for (const Contact& p : plates.contacts) {
     if (!p.whole || p.peak_n < o.stance_bw * o.weight_n || !all_compared(p)) continue;
     const Contact* best = nullptr;
     for (const Contact& c : s.contacts)
       if (c.foot == p.foot && overlap(c, p) > 0 && (!best || overlap(c, p) > overlap(*best, p))) best = &c;
-    if (!best) continue;
-    ++s.matched;
-    peak.push_back(100 * std::abs(best->peak_n - p.peak_n) / p.peak_n);
-    stance.push_back(1000 * std::abs((best->end_s - best->start_s) - (p.end_s - p.start_s)));
-    if (std::isfinite(p.loading_rate_n_s) && std::isfinite(best->loading_rate_n_s))
-      rate.push_back(100 * std::abs(best->loading_rate_n_s - p.loading_rate_n_s) / p.loading_rate_n_s);
+    if (best) out.emplace_back(&p, best);
   }
-  s.peak_error_pct = mean(peak);
-  s.stance_error_ms = mean(stance);
-  s.loading_rate_error_pct = mean(rate);
-  // Strides: from one contact of a foot to its next (the plates' events);
-  // the impulse of the total force over each.
+  return out;
+}
+
+// Mean over the matched stances of `error(plates', s's)`; NaN errors left out.
+template <typename F>
+double mean_error(const std::vector<std::pair<const Contact*, const Contact*>>& pairs, F error) {
+  std::vector<double> v;
+  for (const auto& [p, c] : pairs) v.push_back(error(*p, *c));
+  return mean(v);
+}
+
+// Strides: from one contact of a foot to its next (the plates' events); the
+// mean error of the total force's impulse over each, every frame compared.
+double stride_impulse_error_pct(const ForceSource& s, const ForceSource& plates, const Frames& f) {
   std::vector<double> stride;
   for (std::size_t a = 0; a < plates.contacts.size(); ++a)
     for (std::size_t b = a + 1; b < plates.contacts.size(); ++b) {
@@ -135,31 +150,57 @@ void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::v
       const double t0 = plates.contacts[a].start_s, t1 = plates.contacts[b].start_s;
       double ip = 0, is = 0;
       bool ok = true;
-      for (std::size_t t = 0; t + 1 < time_s.size(); ++t) {
-        if (time_s[t] < t0 || time_s[t + 1] > t1) continue;
-        const double dt = time_s[t + 1] - time_s[t];
+      for (std::size_t t = 0; t + 1 < f.time_s.size(); ++t) {
+        if (f.time_s[t] < t0 || f.time_s[t + 1] > t1) continue;
+        const double dt = f.time_s[t + 1] - f.time_s[t];
         const double pp = plates.total_bw[t] + plates.total_bw[t + 1], ss = s.total_bw[t] + s.total_bw[t + 1];
-        ok = ok && std::isfinite(pp) && std::isfinite(ss) && compared[t] && compared[t + 1];
+        ok = ok && std::isfinite(pp) && std::isfinite(ss) && f.compared[t] && f.compared[t + 1];
         ip += 0.5 * pp * dt, is += 0.5 * ss * dt;
       }
       if (ok && ip > 0) stride.push_back(100 * std::abs(is - ip) / ip);
       break;
     }
-  s.stride_impulse_error_pct = mean(stride);
-  // Centre of pressure along the foot, in single stance (the plates load one foot).
+  return mean(stride);
+}
+
+// Centre of pressure along the foot, in single stance (the plates load one
+// foot): the RMS difference (foot lengths).
+double cop_rms(const ForceSource& s, const ForceSource& plates, const Frames& f, const CompareOptions& o) {
   double ce = 0;
   int cn = 0;
-  for (std::size_t t = 0; t < time_s.size(); ++t) {
-    if (!compared[t]) continue;
+  for (std::size_t t = 0; t < f.time_s.size(); ++t) {
+    if (!f.compared[t]) continue;
     const auto& pf = plates.foot_bw[t];
     const bool left = pf[0] > o.contact_bw, right = pf[1] > o.contact_bw;
     if (left == right) continue;
-    const int f = left ? 0 : 1;
-    const double pu = plates.cop_u[t][std::size_t(f)], su = s.cop_u[t][std::size_t(f)];
+    const int foot = left ? 0 : 1;
+    const double pu = plates.cop_u[t][std::size_t(foot)], su = s.cop_u[t][std::size_t(foot)];
     if (!std::isfinite(pu) || !std::isfinite(su)) continue;
     ce += (su - pu) * (su - pu), ++cn;
   }
-  s.cop_rms = cn ? std::sqrt(ce / cn) : NAN;
+  return cn ? std::sqrt(ce / cn) : NAN;
+}
+
+}  // namespace
+
+void compare_with_plates(ForceSource& s, const ForceSource& plates, const Frames& f, const CompareOptions& o) {
+  s.rmse_bw = force_rmse(s, plates, f);
+  s.flight_recall = flight_recall(s, plates, f, o);
+  const auto stances = matched_stances(s, plates, f, o);
+  s.matched = int(stances.size());
+  s.peak_error_pct = mean_error(stances, [](const Contact& p, const Contact& c) {
+    return 100 * std::abs(c.peak_n - p.peak_n) / p.peak_n;
+  });
+  s.stance_error_ms = mean_error(stances, [](const Contact& p, const Contact& c) {
+    return 1000 * std::abs((c.end_s - c.start_s) - (p.end_s - p.start_s));
+  });
+  s.loading_rate_error_pct = mean_error(stances, [](const Contact& p, const Contact& c) {
+    return std::isfinite(p.loading_rate_n_s) && std::isfinite(c.loading_rate_n_s)
+               ? 100 * std::abs(c.loading_rate_n_s - p.loading_rate_n_s) / p.loading_rate_n_s
+               : NAN;
+  });
+  s.stride_impulse_error_pct = stride_impulse_error_pct(s, plates, f);
+  s.cop_rms = cop_rms(s, plates, f, o);
 }
 
 }  // namespace detail

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -75,19 +76,30 @@ namespace ptnet::detail {
 std::vector<double> resample_box(const std::vector<double>& t, const std::vector<double>& v,
                                  const std::vector<double>& at, double dt);
 
+// What a source's figures are compared with the plates by; compare_options
+// (bench.cpp) fills it from PhysicsBenchOptions, the one home of each
+// threshold (NaN here: not set).
 struct CompareOptions {
-  double flight_bw = 0.05;   // flight: the total force below this
-  double contact_bw = 0.03;  // single stance: one foot above this, the other not
+  double flight_bw = NAN;   // flight: the total force below this (PhysicsBenchOptions::flight_bw)
+  double contact_bw = NAN;  // single stance: one foot above this, the other not (contact_n / weight)
   // A stance carries this at its peak; a lighter contact (a swing foot
   // grazing the floor, a seated foot resting) is not one.
   double stance_bw = 0.3;
-  double weight_n = 0;  // the body's weight, N
+  double weight_n = NAN;  // the body's weight, N
 };
-// Fills s's figures against `plates` (PhysicsBenchOptions, ForceSource)
-// over the frames `compared` marks ([T]): a stride counts when all its
-// frames are compared, a contact when it is a stance that the plates saw
-// whole and every frame of it is compared.
-void compare_with_plates(ForceSource& s, const ForceSource& plates, const std::vector<double>& time_s,
-                         const std::vector<bool>& compared, const CompareOptions& options);
+// The frames the figures are over: their times ([T]) and which are
+// compared ([T], GaitTrialResult::compared).
+struct Frames {
+  const std::vector<double>& time_s;
+  const std::vector<bool>& compared;
+};
+// Fills s's figures against `plates` (PhysicsBenchOptions, ForceSource),
+// one function a figure: the total force's RMSE and flight recall over the
+// compared frames; the peak, stance and loading-rate errors over the
+// plates' stances that s matches (whole, every frame compared); the stride
+// impulse error over strides all of whose frames are compared; the CoP
+// along the foot in single stance.
+void compare_with_plates(ForceSource& s, const ForceSource& plates, const Frames& frames,
+                         const CompareOptions& options);
 
 }  // namespace ptnet::detail
