@@ -79,6 +79,13 @@ TEST(CliC3d, InfoDescribesTheFileAndRefusesADamagedOneInOneLine) {
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("(a truncated file?)"), std::string::npos) << r.err;
+  // Before: a Latin-1 label ended `info --json` in nlohmann's type_error 316.
+  ptnet::test::C3dSpec latin1 = spec();
+  latin1.labels[0] = "caf\xe9";
+  std::ofstream(dir / "l.c3d", std::ios::binary) << ptnet::test::write_c3d(latin1).bytes;
+  r = run_ptnet("info --json '" + (dir / "l.c3d").string() + "'", dir / "run");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["marker_names"], (std::vector<std::string>{"caf\xc3\xa9", "B"}));
   fs::remove_all(dir);
 }
 

@@ -180,6 +180,21 @@ TEST(C3d, LabelsDropComputedPointsAndTheSubjectPrefix) {
   EXPECT_EQ(c.points.at(2, 2), V(4, 3, 3));  // the fourth point
 }
 
+// C3D strings are ASCII; 8-bit ones are the writers' Latin-1 and read as
+// such into UTF-8 (before: a Latin-1 label became a marker name as it was,
+// and `ptnet info --json` ended in nlohmann's "[json.exception.type_error.316]
+// invalid UTF-8 byte").
+TEST(C3d, EightBitTextIsLatin1ReadAsUtf8) {
+  C3dSpec s = small_spec(C3dFormat::intel, true);
+  s.labels[0] = "Genou_\xe9";
+  s.analog_units[0] = "mm/s\xb2";
+  const ptnet::C3d c = ptnet::parse_c3d(ptnet::test::write_c3d(s).bytes, "l.c3d");
+  EXPECT_EQ(c.points.markers[0], "Genou_\xc3\xa9");
+  EXPECT_EQ(c.analog.units[0], "mm/s\xc2\xb2");
+  s.labels[0] = "Genou_\xc3\xa9";  // UTF-8 stays as it is
+  EXPECT_EQ(ptnet::parse_c3d(ptnet::test::write_c3d(s).bytes, "l.c3d").points.markers[0], "Genou_\xc3\xa9");
+}
+
 TEST(C3d, MarkersLoadAsTheSameTrcFileGivesThem) {
   // A standing body (Delaware names, mm, Z up) carried along X: as a .trc
   // file and as a C3D file the canonical joints are the same.

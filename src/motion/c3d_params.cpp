@@ -85,6 +85,22 @@ std::string trimmed(std::string_view s) {
   return std::string(s);
 }
 
+// A string parameter as UTF-8: as it is when it is UTF-8 (ASCII, as c3d.org
+// has them), else read as Latin-1 (ISO 8859-1), the 8-bit text of the
+// writers that store "mm/s\xb2" or "Genou_\xe9": each byte its code point.
+std::string utf8_text(std::string s) {
+  if (utf8_invalid_at(s) == std::string::npos) return s;
+  std::string out;
+  for (unsigned char c : s)
+    if (c < 0x80) {
+      out += char(c);
+    } else {
+      out += char(0xC0 | (c >> 6));
+      out += char(0x80 | (c & 0x3F));
+    }
+  return out;
+}
+
 // The type, dimensions and values of a parameter record whose type byte is
 // at `at`; the values must end by `end` (the next record).
 void read_values(const C3dBytes& b, std::size_t at, std::size_t end, C3dParam& p) {
@@ -112,7 +128,7 @@ void read_values(const C3dBytes& b, std::size_t at, std::size_t end, C3dParam& p
   if (p.type == -1) {
     const std::size_t len = n_dims == 0 ? 1 : std::size_t(p.dims[0]);
     const std::size_t strings = len == 0 ? 0 : n / len;
-    for (std::size_t i = 0; i < strings; ++i) p.strings.push_back(trimmed(b.text(data + i * len, len, "a string")));
+    for (std::size_t i = 0; i < strings; ++i) p.strings.push_back(utf8_text(trimmed(b.text(data + i * len, len, "a string"))));
     return;
   }
   p.numbers.reserve(n);
