@@ -1,8 +1,8 @@
 // The gait-lab commands as a hostile but realistic user drives them (issue
 // 48): nothing written outside --out, nothing half written, every check
 // before the work, every text input UTF-8 or one line, a command that
-// compares nothing exits non-zero. The cases that need real trials use
-// ../shared/real-gait (skipped when absent); the rest run in a bare clone.
+// compares nothing exits non-zero. The trial is the committed synthetic
+// gait trial (tests/data/gait): every case runs in a bare clone.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -46,14 +46,14 @@ void expect_error(const RunResult& r, int status, const std::string& what) {
   EXPECT_EQ(r.out, "");
 }
 
-const std::string kGait = PTNET_SHARED_GAIT;
+const std::string kGait = std::string(PTNET_TEST_DATA) + "/gait";
 const char* kHeader = "trial,markers,static,plates,sex,height_cm,weight_kg\n";
 
 // The walk's plates, each row's time moved by `shift_s` and its force
 // negated when `negate`; `bom` puts a byte-order mark before "endheader" on
 // the file's first line.
 std::string walk_plates(double shift_s, bool negate, bool bom = false) {
-  std::istringstream in(slurp(kGait + "/walk_s01_grf.mot"));
+  std::istringstream in(slurp(kGait + "/walk_grf.mot"));
   std::string out = bom ? "\xef\xbb\xbf" : "", line;
   std::vector<std::string> names;
   bool data = false;
@@ -81,8 +81,8 @@ std::string walk_plates(double shift_s, bool negate, bool bom = false) {
 
 // A trials CSV in work/ for the walk with plates `plates` (a name in work/).
 void walk_csv(const Dir& d, const std::string& csv, const std::string& plates, const std::string& name = "w") {
-  d.write(csv, std::string(kHeader) + name + "," + kGait + "/walk_s01.trc," + kGait + "/walk_s01_static.trc," +
-                   plates + ",male,180.3,72.6\n");
+  d.write(csv, std::string(kHeader) + name + "," + kGait + "/walk.trc," + kGait + "/walk_static.trc," + plates +
+                   ",male,175.0,70.0\n");
 }
 
 }  // namespace
@@ -163,7 +163,6 @@ TEST(CliGaitInputs, OneRuleForTheContactThreshold) {
 // +1 s gave figures without a word; a BOM before endheader was refused; a
 // FIFO was "not found"; marker_map was read from the current folder.
 TEST(CliGaitInputs, PhysicsBenchComparesSomethingOrSaysWhyNot) {
-  if (!fs::exists(kGait + "/walk_s01.trc")) GTEST_SKIP() << "../shared/real-gait not found";
   Dir d;
   d.write("late.mot", walk_plates(100, false));
   walk_csv(d, "late.csv", "late.mot");
@@ -192,8 +191,7 @@ TEST(CliGaitInputs, PhysicsBenchComparesSomethingOrSaysWhyNot) {
                "fifo.csv:2: plates 'fifo.mot': is a FIFO, expected a regular file");
   // A map file beside the trials CSV, the bench run from another folder.
   d.write("lab/trials.csv", std::string("trial,markers,static,plates,sex,height_cm,weight_kg,marker_map\nw,") + kGait +
-                                "/walk_s01.trc," + kGait + "/walk_s01_static.trc," + kGait +
-                                "/walk_s01_grf.mot,male,180.3,72.6,lab.map\n");
+                                "/walk.trc," + kGait + "/walk_static.trc," + kGait + "/walk_grf.mot,male,175.0,70.0,lab.map\n");
   d.write("lab/lab.map", slurp(std::string(PTNET_SOURCE_DIR) + "/src/motion/markers/delaware.map"));
   const RunResult map = d.run("-q physics-bench --trials lab/trials.csv --out map");
   EXPECT_EQ(map.status, 0) << map.err;
