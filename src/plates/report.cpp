@@ -97,6 +97,67 @@ std::vector<GaitTrial> trials_of(const std::vector<GaitTrialResult>& results) {
   return out;
 }
 
+// A trial's entry of results.json.
+nlohmann::ordered_json trial_json(const GaitTrialResult& r) {
+  nlohmann::ordered_json j;
+  j["trial"] = r.trial.name;
+  j["body"] = {{"sex", sex_name(r.trial.body.sex)},
+               {"height_cm", r.trial.body.height_cm},
+               {"weight_kg", r.trial.body.weight_kg}};
+  j["fps"] = r.fps;
+  j["frames"] = r.time_s.size();
+  j["treadmill_belt_mps"] = r.belt_mps;
+  j["coverage"] = plate_coverage_name(r.coverage);
+  j["compared_frames"] = std::count(r.compared.begin(), r.compared.end(), true);
+  j["carried_frames"] = r.carried_frames;
+  j["plate_flight_frames"] = r.flight_frames;
+  j["single_stance_frames"] = r.single_stance_frames;
+  j["plates"] = {{"contacts", source_json(r.plates)["contacts"]}};
+  j["simulated"] = source_json(r.simulated);
+  j["naive"] = source_json(r.naive);
+  return j;
+}
+
+const char* const kPageHead =
+    "<h1>ptnet physics bench: the simulator against force plates</h1>\n"
+    "<p>Each trial's motion (markers) simulated on a body of the subject's sex, stature and mass, its "
+    "vertical ground reaction force beside the trial's force plates on the same clock, and beside the "
+    "naive reference (body weight shared by the feet the simulator puts in contact). BW: body weight. "
+    "Every number: <a href=\"results.json\">results.json</a>; the simulated forces: "
+    "<code>TRIAL_sim.mot</code> (OpenSim storage); every frame of the three: <code>TRIAL_frames.csv</code>.</p>\n"
+    "<table id=\"physics\"><tr><th>trial</th><th>source</th><th>force RMSE (BW)</th><th>peak error (%)</th>"
+    "<th>stance error (ms)</th><th>loading rate error (%)</th><th>stride impulse error (%)</th>"
+    "<th>flight frames found</th><th>CoP along the foot, RMS (foot lengths)</th><th>whole contacts matched</th></tr>\n";
+
+// A trial's rows of the page's table: the simulator and the naive reference.
+void table_rows(std::ostream& b, const GaitTrialResult& r) {
+  const long whole = std::count_if(r.plates.contacts.begin(), r.plates.contacts.end(), [](const Contact& c) { return c.whole; });
+  for (const ForceSource* s : {&r.simulated, &r.naive}) {
+    const std::string flight = std::isfinite(s->flight_recall)
+                                   ? fixed_text(100 * s->flight_recall, 0) + " % of " + std::to_string(r.flight_frames)
+                                   : "no flight";
+    b << "<tr><td>" << html_escape(r.trial.name) << "</td><td>" << s->name << "</td><td class=\"num\">"
+      << cell(s->rmse_bw, 3) << "</td><td class=\"num\">" << cell(s->peak_error_pct, 1) << "</td><td class=\"num\">"
+      << cell(s->stance_error_ms, 0) << "</td><td class=\"num\">" << cell(s->loading_rate_error_pct, 0)
+      << "</td><td class=\"num\">" << cell(s->stride_impulse_error_pct, 1) << "</td><td class=\"num\">" << flight
+      << "</td><td class=\"num\">" << cell(s->cop_rms, 3) << "</td><td class=\"num\">" << s->matched << " of "
+      << whole << "</td></tr>\n";
+  }
+}
+
+// A trial's section of the page: the subject, what was compared, its charts.
+void trial_section(std::ostream& b, const GaitTrialResult& r) {
+  b << "<h2>" << html_escape(r.trial.name) << "</h2>\n<p>" << html_escape(sex_name(r.trial.body.sex)) << ", "
+    << fixed_text(r.trial.body.height_cm, 1) << " cm, " << fixed_text(r.trial.body.weight_kg, 1) << " kg; "
+    << fixed_text(r.fps, 0) << " frames/s; plates see " << (r.coverage == PlateCoverage::all ? "every step" : "some steps")
+    << ": " << std::count(r.compared.begin(), r.compared.end(), true) << " of " << r.time_s.size() << " frames compared"
+    << (r.carried_frames > 0 ? " (" + std::to_string(r.carried_frames) + " carried by a seat left out)" : std::string())
+    << (r.belt_mps > 0 ? "; treadmill belt " + fixed_text(r.belt_mps, 2) + " m/s removed" : std::string()) << ".</p>\n"
+    << "<img src=\"" << html_escape(r.trial.name) << "_total.svg\" alt=\"total vertical force\">\n"
+    << "<img src=\"" << html_escape(r.trial.name) << "_feet.svg\" alt=\"vertical force per foot\">\n"
+    << "<img src=\"" << html_escape(r.trial.name) << "_cop.svg\" alt=\"centre of pressure along the foot\">\n";
+}
+
 }  // namespace
 
 void check_physics_report(const std::vector<GaitTrial>& trials, const std::string& out_dir, bool force) {
@@ -118,65 +179,20 @@ void write_physics_report(const std::vector<GaitTrialResult>& results, const std
   make_folder(out_dir);
   CommitGroup report;  // every file appears at the end, or none
   const auto path = [&](const std::string& name) { return (fs::path(out_dir) / name).string(); };
-
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   std::ostringstream b;
-  b << "<h1>ptnet physics bench: the simulator against force plates</h1>\n"
-       "<p>Each trial's motion (markers) simulated on a body of the subject's sex, stature and mass, its "
-       "vertical ground reaction force beside the trial's force plates on the same clock, and beside the "
-       "naive reference (body weight shared by the feet the simulator puts in contact). BW: body weight. "
-       "Every number: <a href=\"results.json\">results.json</a>; the simulated forces: "
-       "<code>TRIAL_sim.mot</code> (OpenSim storage); every frame of the three: <code>TRIAL_frames.csv</code>.</p>\n"
-       "<table id=\"physics\"><tr><th>trial</th><th>source</th><th>force RMSE (BW)</th><th>peak error (%)</th>"
-       "<th>stance error (ms)</th><th>loading rate error (%)</th><th>stride impulse error (%)</th>"
-       "<th>flight frames found</th><th>CoP along the foot, RMS (foot lengths)</th><th>whole contacts matched</th></tr>\n";
+  b << kPageHead;
   for (const auto& r : results) {
     write_force_table(r.table, path(r.trial.name + "_sim.mot"), force);
     write_series(r, path(r.trial.name + "_frames.csv"), force);
     write_text_file(path(r.trial.name + "_total.svg"), chart(r, Chart::total), force);
     write_text_file(path(r.trial.name + "_feet.svg"), chart(r, Chart::feet), force);
     write_text_file(path(r.trial.name + "_cop.svg"), chart(r, Chart::cop), force);
-    nlohmann::ordered_json j;
-    j["trial"] = r.trial.name;
-    j["body"] = {{"sex", sex_name(r.trial.body.sex)},
-                 {"height_cm", r.trial.body.height_cm},
-                 {"weight_kg", r.trial.body.weight_kg}};
-    j["fps"] = r.fps;
-    j["frames"] = r.time_s.size();
-    j["treadmill_belt_mps"] = r.belt_mps;
-    j["coverage"] = plate_coverage_name(r.coverage);
-    j["compared_frames"] = std::count(r.compared.begin(), r.compared.end(), true);
-    j["carried_frames"] = r.carried_frames;
-    j["plate_flight_frames"] = r.flight_frames;
-    j["single_stance_frames"] = r.single_stance_frames;
-    j["plates"] = {{"contacts", source_json(r.plates)["contacts"]}};
-    j["simulated"] = source_json(r.simulated);
-    j["naive"] = source_json(r.naive);
-    all.push_back(j);
-    const long whole = std::count_if(r.plates.contacts.begin(), r.plates.contacts.end(), [](const Contact& c) { return c.whole; });
-    for (const ForceSource* s : {&r.simulated, &r.naive}) {
-      const std::string flight = std::isfinite(s->flight_recall)
-                                     ? fixed_text(100 * s->flight_recall, 0) + " % of " + std::to_string(r.flight_frames)
-                                     : "no flight";
-      b << "<tr><td>" << html_escape(r.trial.name) << "</td><td>" << s->name << "</td><td class=\"num\">"
-        << cell(s->rmse_bw, 3) << "</td><td class=\"num\">" << cell(s->peak_error_pct, 1) << "</td><td class=\"num\">"
-        << cell(s->stance_error_ms, 0) << "</td><td class=\"num\">" << cell(s->loading_rate_error_pct, 0)
-        << "</td><td class=\"num\">" << cell(s->stride_impulse_error_pct, 1) << "</td><td class=\"num\">" << flight
-        << "</td><td class=\"num\">" << cell(s->cop_rms, 3) << "</td><td class=\"num\">" << s->matched << " of "
-        << whole << "</td></tr>\n";
-    }
+    all.push_back(trial_json(r));
+    table_rows(b, r);
   }
   b << "</table>\n";
-  for (const auto& r : results)
-    b << "<h2>" << html_escape(r.trial.name) << "</h2>\n<p>" << html_escape(sex_name(r.trial.body.sex)) << ", "
-      << fixed_text(r.trial.body.height_cm, 1) << " cm, " << fixed_text(r.trial.body.weight_kg, 1) << " kg; "
-      << fixed_text(r.fps, 0) << " frames/s; plates see " << (r.coverage == PlateCoverage::all ? "every step" : "some steps")
-      << ": " << std::count(r.compared.begin(), r.compared.end(), true) << " of " << r.time_s.size() << " frames compared"
-      << (r.carried_frames > 0 ? " (" + std::to_string(r.carried_frames) + " carried by a seat left out)" : std::string())
-      << (r.belt_mps > 0 ? "; treadmill belt " + fixed_text(r.belt_mps, 2) + " m/s removed" : std::string()) << ".</p>\n"
-      << "<img src=\"" << html_escape(r.trial.name) << "_total.svg\" alt=\"total vertical force\">\n"
-      << "<img src=\"" << html_escape(r.trial.name) << "_feet.svg\" alt=\"vertical force per foot\">\n"
-      << "<img src=\"" << html_escape(r.trial.name) << "_cop.svg\" alt=\"centre of pressure along the foot\">\n";
+  for (const auto& r : results) trial_section(b, r);
   write_text_file(path("results.json"), all.dump(2) + "\n", force);
   write_text_file(path("index.html"), html_page("ptnet physics bench", b.str()), force);
   report.commit();
