@@ -6,12 +6,15 @@
 // does (through symbolic links), and an input that is no regular file is
 // said as what it is.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <new>
 
+#include "core/csv.hpp"
 #include "core/io_internal.hpp"
 #include "core/rate.hpp"
 #include "data_test_util.hpp"
@@ -176,4 +179,51 @@ TEST(Rates, OneToleranceForTheSameFrameRate) {
   EXPECT_TRUE(same_rate(30 * (1 + 0.5 * kSameRateTolerance), 30));
   EXPECT_FALSE(same_rate(30 * (1 + 2 * kSameRateTolerance), 30));
   EXPECT_FALSE(same_rate(59.9, 60));
+}
+
+namespace {
+
+// Runs f with this process's address space limited to what it uses now
+// plus `room` bytes (ulimit -v), the limit restored after.
+template <typename F>
+void with_address_space_room(std::uint64_t room, F f) {
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_AS, &old), 0);
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t pages = 0;
+  statm >> pages;
+  rlimit tight = old;
+  tight.rlim_cur = rlim_t(pages * std::uint64_t(::sysconf(_SC_PAGE_SIZE)) + room);
+  ASSERT_EQ(::setrlimit(RLIMIT_AS, &tight), 0);
+  try {
+    f();
+  } catch (...) {
+    ::setrlimit(RLIMIT_AS, &old);
+    throw;
+  }
+  ::setrlimit(RLIMIT_AS, &old);
+}
+
+}  // namespace
+
+// Before: a CSV's table was only bounded by the file's size (1 GiB), and
+// grew to ~13 times it (a 105 MB clips CSV of short fields: 1.41 GB); under
+// `ulimit -v` the reader ended in std::bad_alloc. What the table holds at
+// most is now checked against the memory the process may still use.
+TEST(Memory, ACsvTableIsCheckedAgainstTheMemoryLeftBeforeItIsParsed) {
+  const std::string text = "a\n" + std::string(20000000, ',');  // 20 M empty fields: 640 MB of strings
+  std::string message;
+  with_address_space_room(std::uint64_t(256) << 20, [&] {
+    EXPECT_LE(available_memory_bytes(), std::uint64_t(256) << 20);
+    try {
+      parse_csv(text, "wide.csv");
+    } catch (const Error& e) {
+      message = e.what();
+    } catch (const std::bad_alloc&) {
+      message = "std::bad_alloc";
+    }
+  });
+  EXPECT_EQ(message.rfind("wide.csv: the CSV's 20000002 fields needs ", 0), 0u) << message;
+  EXPECT_NE(message.find("of available memory"), std::string::npos) << message;
+  EXPECT_EQ(parse_csv("a,b\n1,2\n", "small.csv").rows.size(), 1u);
 }

@@ -40,7 +40,63 @@ const std::string& CsvTable::field(const CsvRow& row, int index) {
   return index < 0 ? empty : row.fields[std::size_t(index)];
 }
 
+namespace {
+
+// The quoted field at text[i] ('"'): its text, "" for a doubled quote;
+// `i` moves past it and the blanks after, `line` past its line ends.
+std::string quoted_field(std::string_view text, std::size_t& i, long& line, const std::string& source) {
+  const std::size_t n = text.size();
+  const long open_line = line;
+  std::string field;
+  ++i;
+  for (;;) {
+    if (i >= n) throw Error::at(source, open_line, "a closing quote", "end of file");
+    const char c = text[i++];
+    if (c == '"') {
+      if (i < n && text[i] == '"') {
+        field += '"';
+        ++i;
+      } else {
+        break;
+      }
+    } else {
+      if (c == '\n') ++line;
+      field += c;
+    }
+  }
+  while (i < n && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
+  if (i < n && text[i] != ',' && text[i] != '\n')
+    throw Error::at(source, line, "a comma or line end after a closing quote", rest_of_line(text, i));
+  return field;
+}
+
+// The unquoted field at text[i], trimmed; `i` moves to the comma or line end.
+std::string plain_field(std::string_view text, std::size_t& i, long line, const std::string& source) {
+  const std::size_t b = i, n = text.size();
+  while (i < n && text[i] != ',' && text[i] != '\n') {
+    if (text[i] == '"') throw Error::at(source, line, "a quote only at the start of a field", rest_of_line(text, b));
+    ++i;
+  }
+  std::string_view raw = text.substr(b, i - b);
+  if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
+  return trim(raw);
+}
+
+// What the table of `text` holds at most, checked against the memory
+// available before it is parsed: a field per comma or line end, a row per
+// line end, the fields' text (a short field is held in its string).
+void check_table_memory(std::string_view text, const std::string& source) {
+  const std::uint64_t lines = std::uint64_t(std::count(text.begin(), text.end(), '\n')) + 1;
+  const std::uint64_t fields = std::uint64_t(std::count(text.begin(), text.end(), ',')) + lines;
+  check_memory(checked_mul(fields, sizeof(std::string), source, "the CSV's fields") +
+                   checked_mul(lines, sizeof(CsvRow), source, "the CSV's rows") + text.size(),
+               source, "the CSV's " + std::to_string(fields) + " fields");
+}
+
+}  // namespace
+
 CsvTable parse_csv(std::string_view text, const std::string& source) {
+  check_table_memory(text, source);
   CsvTable t;
   t.source = source;
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
@@ -61,41 +117,10 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
     }
     CsvRow row;
     row.line = first_line;
+    row.fields.reserve(t.header.size());  // the rows after the header: exactly
     for (;;) {  // one field per iteration
-      std::string field;
       while (i < n && (text[i] == ' ' || text[i] == '\t')) ++i;
-      if (i < n && text[i] == '"') {
-        const long open_line = line;
-        ++i;
-        for (;;) {
-          if (i >= n) throw Error::at(source, open_line, "a closing quote", "end of file");
-          const char c = text[i++];
-          if (c == '"') {
-            if (i < n && text[i] == '"') {
-              field += '"';
-              ++i;
-            } else {
-              break;
-            }
-          } else {
-            if (c == '\n') ++line;
-            field += c;
-          }
-        }
-        while (i < n && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
-        if (i < n && text[i] != ',' && text[i] != '\n')
-          throw Error::at(source, line, "a comma or line end after a closing quote", rest_of_line(text, i));
-      } else {
-        const std::size_t b = i;
-        while (i < n && text[i] != ',' && text[i] != '\n') {
-          if (text[i] == '"')
-            throw Error::at(source, line, "a quote only at the start of a field", rest_of_line(text, b));
-          ++i;
-        }
-        std::string_view raw = text.substr(b, i - b);
-        if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
-        field = trim(raw);
-      }
+      std::string field = i < n && text[i] == '"' ? quoted_field(text, i, line, source) : plain_field(text, i, line, source);
       row.fields.push_back(std::move(field));
       if (i < n && text[i] == ',') {
         ++i;
@@ -108,6 +133,7 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
     if (t.header.empty() && t.header_line == 0) {
       for (auto& f : row.fields) t.header.push_back(lower(f));
       t.header_line = row.line;
+      t.rows.reserve(std::size_t(std::count(text.begin() + std::ptrdiff_t(i), text.end(), '\n')) + 1);
       continue;
     }
     if (row.fields.size() != t.header.size())

@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -386,7 +387,10 @@ void write_text_file(const std::string& path, const std::string& text, bool forc
 
 // ------------------------------------------------------------ sizes
 
-std::uint64_t available_memory_bytes() {
+namespace {
+
+// MemAvailable of /proc/meminfo (else the free pages), 0 if unknown.
+std::uint64_t system_available_bytes() {
   std::ifstream in("/proc/meminfo");
   std::string key;
   std::uint64_t kb = 0;
@@ -395,6 +399,27 @@ std::uint64_t available_memory_bytes() {
     if (key == "MemAvailable:") return kb * 1024;
   const long pages = ::sysconf(_SC_AVPHYS_PAGES), size = ::sysconf(_SC_PAGE_SIZE);
   return pages > 0 && size > 0 ? std::uint64_t(pages) * std::uint64_t(size) : 0;
+}
+
+// This process's address space, bytes (/proc/self/statm), 0 if unknown.
+std::uint64_t address_space_bytes() {
+  std::ifstream in("/proc/self/statm");
+  std::uint64_t pages = 0;
+  const long size = ::sysconf(_SC_PAGE_SIZE);
+  return in >> pages && size > 0 ? pages * std::uint64_t(size) : 0;
+}
+
+}  // namespace
+
+std::uint64_t available_memory_bytes() {
+  std::uint64_t available = system_available_bytes();
+  struct rlimit limit {};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {  // ulimit -v
+    const std::uint64_t used = address_space_bytes(), cap = std::uint64_t(limit.rlim_cur);
+    const std::uint64_t room = cap > used ? cap - used : 1;  // 1, not 0: 0 is "unknown"
+    available = available > 0 ? std::min(available, room) : room;
+  }
+  return available;
 }
 
 void check_memory(std::uint64_t bytes, const std::string& file, const std::string& what) {

@@ -18,7 +18,8 @@ namespace ptnet {
 // their caller sees any of the text. Defined in strings.cpp.
 void check_utf8(std::string_view text, const std::string& source, long first_line = 1);
 
-// Bytes of memory available to this process now (MemAvailable), or 0 if unknown.
+// Bytes of memory available to this process now: MemAvailable, and no more
+// than its address-space limit leaves (RLIMIT_AS, `ulimit -v`); 0 if unknown.
 std::uint64_t available_memory_bytes();
 
 }  // namespace ptnet
