@@ -103,7 +103,8 @@ void bind_bodies(py::module_& m) {
       py::arg("seed") = 1, py::arg("sampling") = "paper",
       "Bodies drawn as in the paper (ptnet bodies): ids f01.., m01.. (retargeted), of01.., om01.. (original); "
       "sampling 'paper' (Gaussian draws) or 'cover' (a Latin hypercube over mean +- 2.5 sd).");
-  m.def("read_bodies_csv", [](const PathArg& path) { return read_bodies_csv(path.string()); }, py::arg("path"), "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
+  m.def("read_bodies_csv", [](const PathArg& path) { return read_bodies_csv(path.string()); }, py::arg("path"),
+        "A bodies CSV (id,sex,height_cm,weight_kg[,role]).");
   m.def("sequence_seed", &sequence_seed, py::arg("seed"), py::arg("name"),
         "The sensor seed `ptnet simulate --seed SEED` gives sequence NAME (<motion_id>__<body_id>).");
 }

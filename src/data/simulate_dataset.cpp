@@ -27,6 +27,11 @@ namespace ptnet {
 namespace fs = std::filesystem;
 namespace {
 
+// The sequence of a motion on a body: "<motion_id>__<body_id>".
+std::string sequence_name(const std::string& motion_id, const std::string& body_id) {
+  return motion_id + "__" + body_id;
+}
+
 std::string default_config(const std::vector<ClipSource>& clips, const std::vector<BodySpec>& bodies,
                            const SimulateDatasetOptions& o) {
   const SimOptions& s = o.sim;
@@ -95,8 +100,8 @@ void check_names(const std::vector<ClipSource>& clips, const std::vector<BodySpe
   std::set<std::string> names;
   for (const ClipSource& c : clips)
     for (const BodySpec& b : bodies)
-      if (!names.insert(c.meta.motion_id + "__" + b.id).second)
-        throw Error::in(c.meta.source, "sequence name " + escaped(c.meta.motion_id + "__" + b.id) +
+      if (!names.insert(sequence_name(c.meta.motion_id, b.id)).second)
+        throw Error::in(c.meta.source, "sequence name " + escaped(sequence_name(c.meta.motion_id, b.id)) +
                                            " made twice (motion and body ids holding \"__\")");
 }
 
@@ -111,7 +116,7 @@ std::vector<std::string> force_files(const std::vector<ClipSource>& clips, const
   std::vector<std::string> out;
   const int nb = int(bodies.size());
   for (int j = begin; j < end; ++j)
-    out.push_back(clips[std::size_t(j / nb)].meta.motion_id + "__" + bodies[std::size_t(j % nb)].id + "." +
+    out.push_back(sequence_name(clips[std::size_t(j / nb)].meta.motion_id, bodies[std::size_t(j % nb)].id) + "." +
                   table_format_name(o.forces_format));
   return out;
 }
@@ -220,7 +225,7 @@ std::vector<SequenceMeta> sequence_metas(const std::vector<ClipSource>& clips, c
     for (const auto& b : bodies) {
       SequenceMeta s = m;
       s.body_id = b.id;
-      s.name = m.motion_id + "__" + b.id;
+      s.name = sequence_name(m.motion_id, b.id);
       metas.push_back(std::move(s));
     }
   }
