@@ -51,6 +51,14 @@ TEST(Csv, MalformedInputIsOneLineNamingFileAndLine) {
             "t.csv:1: expected a header with column c (a,b,c), found 'a,b'");
 }
 
+// Before: a second column of one name was never read (column() gives the
+// first): a trials CSV "trial,markers,...,markers" ran on the first file.
+TEST(Csv, AColumnIsNamedOnce) {
+  EXPECT_EQ(error_of([] { parse_csv("trial,Markers,plates,markers\nw,a.trc,a.mot,b.trc\n", "t.csv"); }),
+            "t.csv:1: expected each column named once, found 'markers' as columns 2 and 4");
+  EXPECT_EQ(parse_csv("a,,b,\n1,2,3,4\n", "t.csv").rows.size(), 1u);  // empty names: no name to take twice
+}
+
 TEST(Csv, WrittenFieldsReadBack) {
   for (const std::string v : {"plain", "a, b", "say \"hi\"", " padded ", "#hash", "two\nlines", ""}) {
     const CsvTable t = parse_csv("h,x\n" + csv_field(v) + ",1\n", "t.csv");

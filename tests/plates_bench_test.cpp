@@ -48,7 +48,11 @@ TEST(ForcePlates, PlatesAreColumnGroupsReadByName) {
            {plate + "0\t1\t2\tabc\t4\t5\t6\n", "t.mot:3: expected a number in column force_vz, found 'abc'"},
            {plate + "0\t1\t2\tnan\t4\t5\t6\n", "t.mot:3: expected a number in column force_vz, found 'nan'"},
            {plate + "1\t0\t0\t0\t0\t0\t0\n0\t0\t0\t0\t0\t0\t0\n",
-            "t.mot: expected increasing times, found 0 after 1"}}) {
+            "t.mot: expected increasing times, found 0 after 1"},
+           // Before: a second plate of the same column names was not read.
+           {"endheader\ntime\tforce_vx\tforce_vy\tforce_vz\tforce_px\tforce_py\tforce_pz\tforce_vx\tforce_vy\t"
+            "force_vz\tforce_px\tforce_py\tforce_pz\n0\t1\t2\t3\t4\t5\t6\t7\t8\t9\t10\t11\t12\n",
+            "t.mot: column 'force_vx' twice (columns 2 and 8): which one is meant?"}}) {
     try {
       ptnet::parse_grf_mot(bad, "t.mot");
       ADD_FAILURE() << bad;

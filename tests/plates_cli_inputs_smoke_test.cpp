@@ -49,10 +49,10 @@ void expect_error(const RunResult& r, int status, const std::string& what) {
 const std::string kGait = std::string(PTNET_TEST_DATA) + "/gait";
 const char* kHeader = "trial,markers,static,plates,sex,height_cm,weight_kg\n";
 
-// The walk's plates, each row's time moved by `shift_s` and its force
-// negated when `negate`; `bom` puts a byte-order mark before "endheader" on
-// the file's first line.
-std::string walk_plates(double shift_s, bool negate, bool bom = false) {
+// The walk's plates, each row's time moved by `shift_s`, its force negated
+// when `negate`, its CoP in mm when `mm`; `bom` puts a byte-order mark
+// before "endheader" on the file's first line.
+std::string walk_plates(double shift_s, bool negate, bool bom = false, bool mm = false) {
   std::istringstream in(slurp(kGait + "/walk_grf.mot"));
   std::string out = bom ? "\xef\xbb\xbf" : "", line;
   std::vector<std::string> names;
@@ -72,6 +72,7 @@ std::string walk_plates(double shift_s, bool negate, bool bom = false) {
       v[0] = std::to_string(std::stod(v[0]) + shift_s);
       for (std::size_t c = 0; c < v.size(); ++c)
         if (negate && names[c].find("force_v") != std::string::npos) v[c] = std::to_string(-std::stod(v[c]));
+        else if (mm && names[c].find("force_p") != std::string::npos) v[c] = std::to_string(1000 * std::stod(v[c]));
     }
     for (std::size_t c = 0; c < v.size(); ++c) out += (c ? "\t" : "") + v[c];
     out += "\n";
@@ -172,7 +173,11 @@ TEST(CliGaitInputs, PhysicsBenchComparesSomethingOrSaysWhyNot) {
   walk_csv(d, "neg.csv", "neg.mot");
   expect_error(d.run("-q physics-bench --trials neg.csv --out neg"), 1,
                "neg.mot: trial 'w': the vertical force is below zero in");
-  EXPECT_FALSE(d.exists("late") || d.exists("neg"));
+  d.write("mm.mot", walk_plates(0, false, false, true));
+  walk_csv(d, "mm.csv", "mm.mot");
+  expect_error(d.run("-q physics-bench --trials mm.csv --out mm"), 1,
+               "mm.mot: trial 'w': the plates' centres of pressure are within 0.15 m of a foot for 0 % of their load");
+  EXPECT_FALSE(d.exists("late") || d.exists("neg") || d.exists("mm"));
   d.write("shift.mot", walk_plates(1, false));
   walk_csv(d, "shift.csv", "shift.mot");
   const RunResult shift = d.run("-q physics-bench --trials shift.csv --out shift");

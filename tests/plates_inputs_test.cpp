@@ -153,14 +153,16 @@ TEST(ForcePlates, PtnetsOwnForceFilesAreTwoPlates) {
 namespace {
 
 // A result of T frames at 100 Hz whose plates read `plates_bw` (NaN: no
-// sample) and whose every frame is compared.
-GaitTrialResult result_with_plates(const std::vector<double>& plates_bw) {
+// sample) and whose every frame is compared; the left foot carries the
+// load unless `under_feet` is false (no plate's CoP near a foot).
+GaitTrialResult result_with_plates(const std::vector<double>& plates_bw, bool under_feet = true) {
   GaitTrialResult r;
   r.trial.name = "w";
   r.trial.plates = "w.mot";
   for (std::size_t t = 0; t < plates_bw.size(); ++t) {
     r.time_s.push_back(0.01 * double(t));
     r.plates.total_bw.push_back(plates_bw[t]);
+    r.plates.foot_bw.push_back({under_feet ? plates_bw[t] : 0.0, 0.0});
     r.compared.push_back(true);
   }
   return r;
@@ -195,6 +197,12 @@ TEST(GaitResults, NothingComparedIsAnErrorAndAPartialOverlapAWarning) {
   GaitTrialResult none = result_with_plates(std::vector<double>(100, 1.0));
   none.compared.assign(100, false);
   EXPECT_NE(error_of([&] { check_gait_result(none, o); }).find("no frame compared"), std::string::npos);
+  // Before: plates whose CoP is in mm (or another frame) gave no force to
+  // any foot: every per-foot figure "-", exit 0.
+  EXPECT_EQ(error_of([&] { check_gait_result(result_with_plates(std::vector<double>(100, 1.0), false), o); }),
+            "w.mot: trial 'w': the plates' centres of pressure are within 0.15 m of a foot for 0 % of their load: "
+            "the CoP in mm (OpenSim storage has metres), or in another lab frame than the markers'? nothing per "
+            "foot to compare");
 }
 
 // physics-bench converts a trial once: the lab's positions (where the

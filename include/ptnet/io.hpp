@@ -196,7 +196,10 @@ class TableReader {
   TableReader(const TableReader&) = delete;
   TableReader& operator=(const TableReader&) = delete;
   const std::vector<std::string>& columns() const { return columns_; }
-  int column(const std::string& name) const;  // its index, -1 when absent (the first if repeated)
+  // Its index, -1 when absent; Error "FILE: column 'x' twice (columns 2
+  // and 8) ..." when two columns have the name (a file's other repeated
+  // names are no matter while no reader asks for them).
+  int column(const std::string& name) const;
   // The next row's values of the columns `use` (indices into columns()), in
   // that order, into `values`: finite numbers, else Error "FILE:LINE:
   // expected a number in column NAME, found 'abc'"; false after the last row.

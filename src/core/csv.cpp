@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <unordered_map>
 
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
@@ -82,6 +83,20 @@ std::string plain_field(std::string_view text, std::size_t& i, long line, const 
   return trim(raw);
 }
 
+// A header names each column once (an empty name aside): a second column
+// of one name would be read as the first, or not at all.
+void check_header(const CsvTable& t) {
+  std::unordered_map<std::string_view, std::size_t> seen;
+  for (std::size_t a = 0; a < t.header.size(); ++a) {
+    if (t.header[a].empty()) continue;
+    const auto [it, fresh] = seen.emplace(t.header[a], a);
+    if (!fresh)
+      throw Error::at(t.source, t.header_line, "each column named once",
+                      escaped(t.header[a], 40) + " as columns " + std::to_string(it->second + 1) + " and " +
+                          std::to_string(a + 1));
+  }
+}
+
 // What the table of `text` holds at most, checked against the memory
 // available before it is parsed: a field per comma or line end, a row per
 // line end, the fields' text (a short field is held in its string).
@@ -133,6 +148,7 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
     if (t.header.empty() && t.header_line == 0) {
       for (auto& f : row.fields) t.header.push_back(lower(f));
       t.header_line = row.line;
+      check_header(t);
       t.rows.reserve(std::size_t(std::count(text.begin() + std::ptrdiff_t(i), text.end(), '\n')) + 1);
       continue;
     }

@@ -10,8 +10,9 @@
 // ("female", "a, b", "say ""hi""", line breaks inside quotes), blank lines
 // and lines starting with '#' (skipped). Unquoted fields are trimmed of
 // spaces and tabs. The first remaining line is the header; its names are
-// matched case-insensitively, so columns may come in any order. Every row
-// must have as many fields as the header. Errors are one line:
+// matched case-insensitively, so columns may come in any order, and each is
+// named once ("markers" twice is refused: one would be read, the other not).
+// Every row must have as many fields as the header. Errors are one line:
 // "bodies.csv:4: expected 4 fields, found 5".
 //
 // Private to the library (not installed): the stages include it as

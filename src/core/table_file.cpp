@@ -98,9 +98,15 @@ void TableReader::read_names() {
 }
 
 int TableReader::column(const std::string& name) const {
-  for (std::size_t c = 0; c < columns_.size(); ++c)
-    if (columns_[c] == name) return int(c);
-  return -1;
+  int found = -1;
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    if (columns_[c] != name) continue;
+    if (found >= 0)
+      throw Error::in(source(), "column " + escaped(name, 60) + " twice (columns " + std::to_string(found + 1) +
+                                    " and " + std::to_string(c + 1) + "): which one is meant?");
+    found = int(c);
+  }
+  return found;
 }
 
 bool TableReader::next(const std::vector<int>& use, std::vector<double>& values) {

@@ -12,6 +12,21 @@ namespace {
 
 std::string span_text(double a, double b) { return fixed_text(a, 3) + "-" + fixed_text(b, 3) + " s"; }
 
+// The share of the plates' load (frames above flight_bw) given to a foot,
+// their CoP within PhysicsBenchOptions::assign_m of it: ~1 when the plates
+// and the markers are in one frame and one unit.
+double load_under_feet(const GaitTrialResult& r, const PhysicsBenchOptions& o) {
+  double total = 0, feet = 0;
+  for (std::size_t t = 0; t < r.time_s.size(); ++t) {
+    const double bw = r.plates.total_bw[t];
+    if (!(bw > o.flight_bw)) continue;
+    total += bw;
+    for (double f : r.plates.foot_bw[t])
+      if (std::isfinite(f)) feet += f;
+  }
+  return total > 0 ? feet / total : 1.0;
+}
+
 }  // namespace
 
 std::vector<std::string> check_gait_result(const GaitTrialResult& r, const PhysicsBenchOptions& o) {
@@ -43,6 +58,11 @@ std::vector<std::string> check_gait_result(const GaitTrialResult& r, const Physi
   if (above == 0)
     throw Error::in(where, trial + "the plates carry no load (above " + number_text(o.flight_bw) + " BW) in any of the " +
                                std::to_string(covered) + " frames they cover: nothing to compare");
+  if (const double share = load_under_feet(r, o); share < 0.5)
+    throw Error::in(where, trial + "the plates' centres of pressure are within " + number_text(o.assign_m) +
+                               " m of a foot for " + fixed_text(100 * share, 0) +
+                               " % of their load: the CoP in mm (OpenSim storage has metres), or in another lab "
+                               "frame than the markers'? nothing per foot to compare");
   if (compared == 0)
     throw Error::in(where, trial + "no frame compared (the plates see only some steps, and none of the " +
                                std::to_string(T) + " frames whole: coverage)");
