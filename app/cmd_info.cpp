@@ -173,7 +173,7 @@ nlohmann::ordered_json describe_c3d(const InfoCli& o) {
   MarkerReport report;
   try {
     const Motion motion = motion_from_trc(trc, mo, &report);
-    j["up"] = report.up_axis;
+    j["up"] = up_axis_name(report.up_axis);
     j["marker_map"] = report.map;
     j["landmarks"] = report.placed;
     j["methods"] = report.methods;

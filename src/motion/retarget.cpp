@@ -47,27 +47,11 @@ double leg_length(const Pose& p) {
 
 // Each foot's ankle height in the source (m, [2][T]) and whether the foot
 // is planted (its ankle slower than kPlantedMps, within kPlantedBandM of its
-// lowest level), the height held at its median through every stance: a
-// planted foot stands on the floor, and the frame-to-frame wobble of its
-// marker-derived joint is no motion of it.
+// lowest level): a planted foot stands on the floor.
 struct AnkleHeights {
   std::array<std::vector<double>, 2> z;      // [2][T] m
   std::array<std::vector<bool>, 2> planted;  // [2][T]
 };
-
-// Each run of `planted` frames of z set to its median.
-void hold_median(std::vector<double>& z, const std::vector<bool>& planted) {
-  for (std::size_t a = 0; a < z.size();) {
-    std::size_t b = a;
-    while (b < z.size() && planted[b]) ++b;
-    if (b > a) {
-      std::vector<double> run(z.begin() + std::ptrdiff_t(a), z.begin() + std::ptrdiff_t(b));
-      std::nth_element(run.begin(), run.begin() + std::ptrdiff_t(run.size() / 2), run.end());
-      std::fill(z.begin() + std::ptrdiff_t(a), z.begin() + std::ptrdiff_t(b), run[run.size() / 2]);
-    }
-    a = b + 1;
-  }
-}
 
 AnkleHeights planted_ankle_heights(const Motion& source) {
   const std::size_t T = source.frames.size();
@@ -88,7 +72,6 @@ AnkleHeights planted_ankle_heights(const Motion& source) {
           t1 > t0 ? (source.frames[t1][ankle] - source.frames[t0][ankle]).head<2>().norm() * fps / double(t1 - t0) : 0.0;
       planted[t] = speed < kPlantedMps && zs[t] < sorted[k] + kPlantedBandM;
     }
-    hold_median(zs, planted);
   }
   return out;
 }

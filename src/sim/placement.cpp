@@ -15,36 +15,60 @@
 
 namespace ptnet::detail {
 
+namespace {
+
+constexpr double kPlantedMps = 0.15;  // a joint slower than this (horizontally) is planted
+
+// Per frame, the lowest planted sole (1e300: none), two kinds: [0] a
+// hindfoot that is nearly level (< ~7 degrees) under a still ankle (a foot
+// flat on the floor; heel strikes and toe-offs do not count: their rigid
+// sole reaches lower than the real, rolling one); [1] the sole under a still
+// toe joint while the heel is raised (a forefoot stance: a sprint, a dancer
+// on the balls of the feet), whose level the marker-placed toe joint gives
+// less well (1-2 cm high in walking push-offs): used only where no flat foot
+// is near.
+std::array<std::vector<double>, 2> planted_soles(const Motion& motion, const Body& body) {
+  const int T = motion.size();
+  const double fps = motion.fps > 0 ? motion.fps : 30;
+  std::array<std::vector<double>, 2> out{std::vector<double>(std::size_t(T), 1e300),
+                                         std::vector<double>(std::size_t(T), 1e300)};
+  for (int t = 0; t < T; ++t) {
+    const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
+    const int t0 = std::max(0, t - 1), t1 = std::min(T - 1, t + 1);
+    for (int s = 0; s < 2; ++s) {
+      const auto& f = s ? pb.right_foot : pb.left_foot;
+      for (int kind = 0; kind < 2; ++kind) {
+        const int j = (s ? kRightAnkle : kLeftAnkle) + kind;  // the ankle, then the toe joint
+        const double speed =
+            t1 > t0 ? (motion.frames[std::size_t(t1)][j] - motion.frames[std::size_t(t0)][j]).head<2>().norm() * fps / (t1 - t0)
+                    : 0.0;
+        const double slope = f[0].forward.z();
+        if (speed < kPlantedMps && (kind == 0 ? std::abs(slope) < 0.12 : slope < -0.12))
+          out[std::size_t(kind)][std::size_t(t)] = std::min(out[std::size_t(kind)][std::size_t(t)], f[std::size_t(kind)].origin.z());
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<double> floor_track(const Motion& motion, const Body& body, double window_s, double max_m) {
   const int T = motion.size();
   std::vector<double> floor(static_cast<std::size_t>(T), 0.0);
   if (!(window_s > 0) || T == 0) return floor;
   const double fps = motion.fps > 0 ? motion.fps : 30;
-  // The floor is where flat, planted feet stand: per frame, the sole plane
-  // of a foot that is nearly level (< ~7 degrees) and barely moves (< 0.15
-  // m/s). Heel strikes and toe-offs do not count: their rigid sole reaches
-  // lower than the real, rolling one.
-  std::vector<double> planted(std::size_t(T), 1e300);
-  for (int t = 0; t < T; ++t) {
-    const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
-    for (int s = 0; s < 2; ++s) {
-      const auto& f = s ? pb.right_foot : pb.left_foot;
-      const int a = s ? kRightAnkle : kLeftAnkle;
-      const int t0 = std::max(0, t - 1), t1 = std::min(T - 1, t + 1);
-      const double speed =
-          t1 > t0 ? (motion.frames[std::size_t(t1)][a] - motion.frames[std::size_t(t0)][a]).head<2>().norm() * fps / (t1 - t0)
-                  : 0.0;
-      if (speed < 0.15 && std::abs(f[0].forward.z()) < 0.12)
-        planted[std::size_t(t)] = std::min(planted[std::size_t(t)], f[0].origin.z());
-    }
-  }
+  // The floor is where planted feet stand, followed over the window.
+  const std::array<std::vector<double>, 2> planted = planted_soles(motion, body);
   const int half = std::max(1, int(std::lround(0.5 * window_s * fps)));
   bool any = false;
   for (int t = 0; t < T; ++t) {
-    double m = 1e300;
-    for (int k = std::max(0, t - half); k <= std::min(T - 1, t + half); ++k) m = std::min(m, planted[std::size_t(k)]);
-    if (m < 1e299) {
-      floor[std::size_t(t)] = std::clamp(m, -max_m, max_m);
+    std::array<double, 2> m{1e300, 1e300};
+    for (int k = std::max(0, t - half); k <= std::min(T - 1, t + half); ++k)
+      for (int kind = 0; kind < 2; ++kind) m[std::size_t(kind)] = std::min(m[std::size_t(kind)], planted[std::size_t(kind)][std::size_t(k)]);
+    const double level = m[0] < 1e299 ? m[0] : m[1];
+    if (level < 1e299) {
+      floor[std::size_t(t)] = std::clamp(level, -max_m, max_m);
       any = true;
     } else {
       floor[std::size_t(t)] = std::nan("");
