@@ -178,7 +178,7 @@ TEST_F(SimulateCli, BadInputIsOneLineExitOneAndNoFile) {
                {"bodies.csv", "range.csv"});
 
   spit(dir_ / "clips.csv", "file,subject,category,take\nnope.bvh,1,walking,1\n");
-  expect_error("--clips clips.csv --bodies bodies.csv --out o.h5", {"clips.csv:2", "'nope.bvh' not found"},
+  expect_error("--clips clips.csv --bodies bodies.csv --out o.h5", {"clips.csv:2", "clip file 'nope.bvh': no such file"},
                {"bodies.csv", "clips.csv"});
 
   spit(dir_ / "a.bvh", "x");
