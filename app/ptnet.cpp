@@ -32,6 +32,7 @@
 #include "command.hpp"
 #include "local_ranks.hpp"
 #include "ptnet/error.hpp"
+#include "ptnet/memory.hpp"
 #include "ptnet/strings.hpp"
 
 namespace ptnet::cli {
@@ -125,6 +126,7 @@ int run_torch_executable(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ptnet::keep_freed_memory();  // ptnet/memory.hpp: no page faults for freed and retaken tensors
   CLI::App app{
       "ptnet: PressureTransferNet. Simulates 80 x 28 ground-pressure-mat recordings from motion\n"
       "capture retargeted onto bodies of any sex, height and weight, and trains and runs an\n"
