@@ -232,6 +232,23 @@ std::vector<SequenceMeta> sequence_metas(const std::vector<ClipSource>& clips, c
   return metas;
 }
 
+// Jobs j0..j1 (motion j / bodies, body j % bodies) retargeted onto their
+// bodies' heights, with their motions' placements scaled alike.
+void retarget_jobs(const std::vector<Motion>& motions, const std::vector<MotionPlacement>& places,
+                   const std::vector<BodySpec>& bodies, int j0, int j1, int threads, std::vector<Motion>& retargeted,
+                   std::vector<MotionPlacement>& placed) {
+  const int nb = int(bodies.size());
+  retargeted.assign(std::size_t(j1 - j0), Motion{});
+  placed.assign(std::size_t(j1 - j0), MotionPlacement{});
+  parallel_for(j1 - j0, threads, [&](int k) {
+    const int j = j0 + k;
+    const Motion& source = motions[std::size_t(j / nb)];
+    const double height = bodies[std::size_t(j % nb)].height_cm;
+    retargeted[std::size_t(k)] = retarget(source, height);
+    placed[std::size_t(k)] = places[std::size_t(j / nb)].scaled(retarget_scale(source, height));
+  });
+}
+
 // 2. Chunks of jobs: retarget, simulate, write (chunk i is written while
 //    chunk i + 1 is simulated). Sequences on original bodies are read a
 //    second time by the sensor model with another seed (the noise floor,
@@ -256,15 +273,9 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
   } wait_writer{writing};
   for (int j0 = begin; j0 < end; j0 += chunk) {
     const int j1 = std::min(end, j0 + chunk);
-    std::vector<Motion> retargeted(std::size_t(j1 - j0));
-    std::vector<MotionPlacement> placed(std::size_t(j1 - j0));
-    parallel_for(j1 - j0, threads, [&](int k) {
-      const int j = j0 + k;
-      const Motion& source = motions[std::size_t(j / nb)];
-      const double height = bodies[std::size_t(j % nb)].height_cm;
-      retargeted[std::size_t(k)] = retarget(source, height);
-      placed[std::size_t(k)] = places[std::size_t(j / nb)].scaled(retarget_scale(source, height));
-    });
+    std::vector<Motion> retargeted;
+    std::vector<MotionPlacement> placed;
+    retarget_jobs(motions, places, bodies, j0, j1, threads, retargeted, placed);
     // A floor is the sequence's pressure read again with another sensor seed.
     std::vector<SimJob> jobs;
     for (int j = j0; j < j1; ++j) {
