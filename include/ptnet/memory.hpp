@@ -15,8 +15,7 @@ namespace ptnet {
 // step or a chunk of inference allocates and frees the same few MB of
 // tensors again and again; on a virtual machine, where a page fault is
 // slow, the faults took more CPU than the arithmetic (docs/model.md,
-// "Speed": `ptnet train --preset fast` 2 x 2,048 frames, 37.8 CPU s and
-// 2.0 M page faults by default, 14.2 CPU s and 0.24 M with it). The peak
+// "Speed": the demo's training 3x faster in wall time). The peak
 // memory is about the same; what is freed stays with the process until it
 // ends. Process-wide, so the library never calls it: the command-line tool
 // and the benchmarks do, first thing in main(). Does nothing on another C
