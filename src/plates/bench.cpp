@@ -163,6 +163,29 @@ PlateFeet plate_feet(const ForcePlates& fp, const Motion& lab, int up, const Phy
   return out;
 }
 
+// The plates' samples within the markers' time span [t0, t1] (1 us either
+// side: times written to 6 decimals): a contact that runs past either end
+// of the markers is cut in the plates as in the simulation, so neither
+// counts it whole, and no plate sample is given to a foot the markers no
+// longer place.
+ForcePlates within_span(ForcePlates fp, double t0, double t1) {
+  constexpr double kSlackS = 1e-6;
+  const std::vector<double>& t = fp.time_s;
+  const auto a = std::lower_bound(t.begin(), t.end(), t0 - kSlackS) - t.begin();
+  const auto b = std::max(a, std::upper_bound(t.begin(), t.end(), t1 + kSlackS) - t.begin());
+  const std::size_t N = t.size();
+  auto cut = [&](auto& v) {
+    if (v.size() == N) v = std::decay_t<decltype(v)>(v.begin() + a, v.begin() + b);
+  };
+  for (ForcePlates::Plate& p : fp.plates) {
+    cut(p.force_n);
+    cut(p.cop_m);
+    cut(p.free_moment_nm);
+  }
+  cut(fp.time_s);
+  return fp;
+}
+
 // The contacts of each foot's force ([2][N], N) at times `time_s` ([N]),
 // in the order they start.
 std::vector<Contact> foot_contacts(const std::vector<double>& time_s, const std::array<std::vector<double>, 2>& feet_n,
@@ -310,7 +333,8 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   r.table = force_table(trace, lab, body);  // each foot's CoP in the lab, as the plates'
   r.time_s = r.table.time_s;
   const double bw = body.mass_kg() * anthropometry::kGravity;
-  const ForcePlates fp = read_force_plates(trial.plates.empty() ? trial.markers : trial.plates, o.contact_n);
+  ForcePlates fp = read_force_plates(trial.plates.empty() ? trial.markers : trial.plates, o.contact_n);
+  if (!r.time_s.empty()) fp = within_span(std::move(fp), r.time_s.front(), r.time_s.back());
   const int up = report.up_axis == UpAxis::y ? 1 : 2;
   r.plates = plates_source(fp, plate_feet(fp, lab, up, o), r.time_s, 1 / r.fps, bw, o);
   r.simulated = simulated_source(r.table, bw, o);
