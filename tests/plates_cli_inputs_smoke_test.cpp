@@ -150,6 +150,27 @@ TEST(CliGaitInputs, MotionsWritesWhatItsNameSaysAndRefusesWhatItWouldIgnore) {
   EXPECT_FALSE(d.exists("set"));
 }
 
+// Before: simulate wrote HDF5 into w.trc or w.bvh, merge into m.trc and
+// bodies CSV into b.trc (only motions checked its output's name). One
+// check (check_output_name) for every command that writes a file of one
+// format, before any work; nothing is written.
+TEST(CliGaitInputs, EveryOutputFileIsNamedForItsFormat) {
+  Dir d;
+  expect_error(d.run("bodies --males 1 --females 0 --originals 0,0 --out b.trc"), 1,
+               "b.trc: expected a .csv file name (CSV is written), found '.trc'");
+  ASSERT_EQ(d.run("-q bodies --males 1 --females 0 --originals 0,0 --out b.csv").status, 0);
+  const std::string simulate = "-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies b.csv --out ";
+  for (const char* name : {"w.trc", "w.bvh", "w"})
+    expect_error(d.run(simulate + name), 1,
+                 std::string(name) + ": expected a .h5 or .hdf5 file name (an HDF5 dataset is written), found " +
+                     (std::string(name) == "w" ? "no extension" : "'" + fs::path(name).extension().string() + "'"));
+  ASSERT_EQ(d.run(simulate + "e.H5").status, 0);  // any case
+  expect_error(d.run("merge e.H5 -o m.trc"), 1, "m.trc: expected a .h5 or .hdf5 file name");
+  expect_error(d.run("render e.H5 -s p1_walking_t1__b1 -o f.svg"), 1,
+               "f.svg: expected a .png or .gif file name (a PNG strip or a GIF animation is written), found '.svg'");
+  for (const char* name : {"b.trc", "w.trc", "w.bvh", "w", "m.trc", "f.svg"}) EXPECT_FALSE(d.exists(name)) << name;
+}
+
 TEST(CliGaitInputs, OneRuleForTheContactThreshold) {
   Dir d;
   d.write("b.csv", "id,sex,height_cm,weight_kg\nb1,female,160,55\n");

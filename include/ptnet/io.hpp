@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -98,6 +99,14 @@ bool existing_folder(const std::string& path);
 // a regular file, if it is an input of this run, or if its folder is missing
 // or not writable.
 void check_output_path(const std::string& path, bool force);
+
+// An output file's name says what it holds: Error "w.trc: expected a .h5 or
+// .hdf5 file name (an HDF5 dataset is written), found '.trc'" unless `path`
+// ends in one of `extensions` (".h5"; any case). Every writer of a file of
+// one format checks it before its work (check_dataset_output in data.hpp,
+// check_bvh_output in motion.hpp, figures, CSV, state dicts).
+void check_output_name(const std::string& path, std::initializer_list<const char*> extensions,
+                       const std::string& written);
 
 // The same for an output folder (a model or report folder): an existing
 // non-folder is an error; an existing non-empty folder needs `force`.
