@@ -222,3 +222,24 @@ TEST(CliGaitInputs, PhysicsBenchComparesSomethingOrSaysWhyNot) {
   const RunResult map = d.run("-q physics-bench --trials lab/trials.csv --out map");
   EXPECT_EQ(map.status, 0) << map.err;
 }
+
+// Before: a marker_map that is no file on row 3 of a trials CSV failed only
+// after row 2's trial was simulated, and its message lacked "t.csv:3"; a
+// clips CSV's static or marker_map likewise failed when its clip was read.
+// Now each is checked at its line before any work.
+TEST(CliGaitInputs, MarkerMapsAndStaticTrialsAreCheckedAtTheirLine) {
+  Dir d;
+  d.write("t.csv", std::string("trial,markers,static,plates,sex,height_cm,weight_kg,marker_map\nw,") + kGait +
+                       "/walk.trc," + kGait + "/walk_static.trc," + kGait + "/walk_grf.mot,male,175.0,70.0,delaware\n" +
+                       "v," + kGait + "/walk.trc,," + kGait + "/walk_grf.mot,male,175.0,70.0,nosuch.map\n");
+  expect_error(d.run("-q physics-bench --trials t.csv --out pb"), 1,
+               "t.csv:3: marker_map 'nosuch.map': no such file (shipped maps: common, delaware, plugin-gait)");
+  EXPECT_FALSE(d.exists("pb"));
+  d.write("b.csv", "id,sex,height_cm,weight_kg\nb1,female,160,55\n");
+  const std::string header = "file,subject,category,take,marker_map,static\n", clip = kGait + "/walk.trc,s1,walking,";
+  d.write("c.csv", header + clip + "1,delaware," + kGait + "/walk_static.trc\n" + clip + "2,delaware,nosuch.trc\n");
+  expect_error(d.run("-q simulate --clips c.csv --bodies b.csv --out c.h5"), 1, "c.csv:3: static 'nosuch.trc': no such file");
+  d.write("m.csv", header + clip + "1,nosuch.map,\n");
+  expect_error(d.run("-q simulate --clips m.csv --bodies b.csv --out m.h5"), 1, "m.csv:2: marker_map 'nosuch.map': no such file");
+  EXPECT_FALSE(d.exists("c.h5") || d.exists("m.h5"));
+}

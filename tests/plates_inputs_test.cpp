@@ -100,6 +100,24 @@ TEST(GaitTrials, AMarkerMapFileIsBesideTheCsvAShippedMapStaysAName) {
   EXPECT_EQ(trials[1].marker_map, "delaware");
 }
 
+// Before: a trials CSV's marker_map was only resolved, and read when its
+// trial ran: "nosuch.map" (or a folder, a FIFO) on row 3 failed after row
+// 2's trial was simulated, without the CSV's line. It is now checked at its
+// line with the trial's other files, before any trial runs.
+TEST(GaitTrials, AMarkerMapFileIsCheckedAtItsLineBeforeAnyTrial) {
+  Trials t("a,w.trc,,w.mot,male,180,72,lab.map\nb,w.trc,,w.mot,male,180,72,nosuch.map\n",
+           std::string(kHeader) + ",marker_map");
+  EXPECT_EQ(error_of([&] { read_gait_trials(t.csv, ""); }),
+            t.csv + ":3: marker_map 'nosuch.map': no such file (shipped maps: common, delaware, plugin-gait)");
+  fs::create_directories(t.dir.file("maps"));
+  ASSERT_EQ(::mkfifo(t.dir.file("fifo.map").c_str(), 0600), 0);
+  for (const char* name : {"maps", "fifo.map"}) {
+    std::ofstream(t.csv) << kHeader << ",marker_map\na,w.trc,,w.mot,male,180,72," << name << "\n";
+    const std::string e = error_of([&] { read_gait_trials(t.csv, ""); });
+    EXPECT_EQ(e.rfind(t.csv + ":2: marker_map '" + name + "': is a ", 0), 0u) << e;
+  }
+}
+
 // One list of the trials CSV's columns: the parser reads it, the help is
 // built from it, docs/physics.md documents each (before: the help omitted
 // coverage).

@@ -52,12 +52,7 @@ namespace {
 std::string trial_file(const std::string& csv, long line, const char* column, const std::string& base,
                        const std::string& name, bool required) {
   if (required && name.empty()) throw Error::at(csv, line, std::string("a file in column ") + column, "an empty field");
-  const std::string path = resolved_path(base, name);
-  ErrorKind kind{};
-  if (const std::string problem = path.empty() ? "" : input_file_problem(path, &kind); !problem.empty())
-    throw Error(csv + ":" + std::to_string(line) + ": " + column + " " + escaped(name) + ": " + problem, kind);
-  if (!path.empty()) note_input(path);  // no output of the bench may replace it: checked before the work
-  return path;
+  return listed_input(csv, line, column, base, name);  // no output of the bench may replace it
 }
 
 // Each trial's name is a file name of the report (TRIAL_sim.mot, ...) and
@@ -94,7 +89,7 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
     if (g.plates.empty() && lower(fs::path(g.markers).extension().string()) != ".c3d")
       throw Error::at(csv, row.line, "a plates file (or markers in a .c3d file, which holds its plates)", "an empty field");
     g.static_markers = trial_file(csv, row.line, "static", base, get("static"), false);
-    g.marker_map = marker_map_in(base, get("marker_map"));
+    g.marker_map = marker_map_in(csv, row.line, base, get("marker_map"));
     if (!get("coverage").empty()) try {
         g.coverage = parse_plate_coverage(get("coverage"));
       } catch (const Error&) {
