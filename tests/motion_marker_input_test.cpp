@@ -162,7 +162,7 @@ TEST(MarkerUnits, AWrongUnitsHeaderIsRefusedWithTheUnitThatFitsAndCanBeOverridde
   EXPECT_EQ(ptnet::motion_from_trc(trc, o).size(), 10);
   // A unit given that is wrong is refused too.
   o.metres_per_unit = 0.01;
-  EXPECT_NE(error_of([&] { ptnet::motion_from_trc(trc, o); }).find("in the units given"), std::string::npos);
+  EXPECT_NE(error_of([&] { ptnet::motion_from_trc(trc, o); }).find("in the unit given (units)"), std::string::npos);
 }
 
 TEST(MarkerUnits, AStaticTrialInOtherUnitsIsConvertedAndOneOfAnotherScaleOrSetRefused) {

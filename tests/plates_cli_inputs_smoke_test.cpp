@@ -243,3 +243,24 @@ TEST(CliGaitInputs, MarkerMapsAndStaticTrialsAreCheckedAtTheirLine) {
   expect_error(d.run("-q simulate --clips m.csv --bodies b.csv --out m.h5"), 1, "m.csv:2: marker_map 'nosuch.map': no such file");
   EXPECT_FALSE(d.exists("c.h5") || d.exists("m.h5"));
 }
+
+// Before: the .trc units error said "pass --units" from physics-bench and
+// `motions --from`, neither of which had such an option. physics-bench
+// takes a units column (and says so), motions --from takes --units.
+TEST(CliGaitInputs, TheMarkersUnitCanBeGivenWhereverTheErrorAsksForIt) {
+  Dir d;
+  const std::string row = std::string("w,") + kGait + "/walk.trc," + kGait + "/walk_static.trc," + kGait +
+                          "/walk_grf.mot,male,175.0,70.0,";
+  d.write("m.csv", std::string(kHeader).substr(0, std::string(kHeader).size() - 1) + ",units\n" + row + "m\n");
+  expect_error(d.run("-q physics-bench --trials m.csv --out m"), 1, "apart in the unit given (the trials CSV's units column), expected a pelvis [0.15, 0.4] m wide; "
+               "the values fit mm: pass the trials CSV's units column");
+  EXPECT_FALSE(d.exists("m"));
+  d.write("mm.csv", std::string(kHeader).substr(0, std::string(kHeader).size() - 1) + ",units\n" + row + "mm\n");
+  const RunResult mm = d.run("-q physics-bench --trials mm.csv --out mm");
+  EXPECT_EQ(mm.status, 0) << mm.err;
+  const std::string from = "motions --from " + kGait + "/walk.trc --static " + kGait + "/walk_static.trc ";
+  expect_error(d.run(from + "--units m --out m.bvh"), 1, "apart in the unit given (--units), expected a pelvis");
+  EXPECT_EQ(d.run("-q " + from + "--units mm --out mm.bvh").status, 0);
+  expect_error(d.run("motions --category walking --units m --out g.bvh"), 2, "--units");
+  EXPECT_FALSE(d.exists("m.bvh") || d.exists("g.bvh"));
+}

@@ -118,11 +118,27 @@ TEST(GaitTrials, AMarkerMapFileIsCheckedAtItsLineBeforeAnyTrial) {
   }
 }
 
+// Before: a column the bench does not know (a misspelt "unit", "bogus")
+// was ignored in silence; the markers' unit had no column, so the units
+// error's "pass --units" named an option physics-bench does not have.
+TEST(GaitTrials, AnUnknownColumnIsRefusedAndUnitsIsOne) {
+  Trials bogus("a,w.trc,,w.mot,male,180,72,1\n", std::string(kHeader) + ",bogus");
+  EXPECT_EQ(error_of([&] { read_gait_trials(bogus.csv, ""); }),
+            bogus.csv + ":1: expected only the columns " + gait_trial_columns_text() + ", found column 'bogus'");
+  Trials units("a,w.trc,,w.mot,male,180,72,m\nb,w.trc,,w.mot,male,180,72,\n", std::string(kHeader) + ",units");
+  const auto trials = read_gait_trials(units.csv, "");
+  EXPECT_EQ(trials[0].units, Units::m);
+  EXPECT_EQ(trials[1].units, Units::automatic);
+  Trials furlongs("a,w.trc,,w.mot,male,180,72,furlongs\n", std::string(kHeader) + ",units");
+  EXPECT_EQ(error_of([&] { read_gait_trials(furlongs.csv, ""); }),
+            furlongs.csv + ":2: expected units auto, m, cm, mm, in or cmu, found 'furlongs'");
+}
+
 // One list of the trials CSV's columns: the parser reads it, the help is
 // built from it, docs/physics.md documents each (before: the help omitted
 // coverage).
 TEST(GaitTrials, TheColumnsAreOneListThatTheDocsFollow) {
-  EXPECT_EQ(gait_trial_columns_text(), "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage]");
+  EXPECT_EQ(gait_trial_columns_text(), "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage,units]");
   std::ifstream in(std::string(PTNET_SOURCE_DIR) + "/docs/physics.md");
   const std::string page((std::istreambuf_iterator<char>(in)), {});
   const std::size_t at = page.find("## Trials of one's own");

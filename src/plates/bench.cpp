@@ -68,6 +68,31 @@ void check_trial_name(const std::string& csv, long line, const std::string& name
                                                           std::to_string(it->second) + "'s trial too");
 }
 
+// The header names only columns of kGaitTrialColumns (a misspelt optional
+// column would be ignored: "unit" for units).
+void check_trial_columns(const CsvTable& t, const std::string& columns) {
+  for (const std::string& name : t.header) {
+    const bool known = std::any_of(std::begin(kGaitTrialColumns), std::end(kGaitTrialColumns),
+                                   [&](const GaitTrialColumn& c) { return name == c.name; });
+    if (!known) throw Error::at(t.source, t.header_line, "only the columns " + columns, "column " + escaped(name));
+  }
+}
+
+// A row's optional fields: the coverage and the markers' units.
+void read_trial_options(const std::string& csv, long line, const std::string& coverage, const std::string& units,
+                        GaitTrial& g) {
+  if (!coverage.empty()) try {
+      g.coverage = parse_plate_coverage(coverage);
+    } catch (const Error&) {
+      throw Error::at(csv, line, "coverage auto, all or some", escaped(coverage));
+    }
+  if (!units.empty()) try {
+      g.units = parse_units(units);
+    } catch (const Error&) {
+      throw Error::at(csv, line, "units auto, m, cm, mm, in or cmu", escaped(units));
+    }
+}
+
 }  // namespace
 
 std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir) {
@@ -76,6 +101,7 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
   std::map<std::string, int> c;
   for (const GaitTrialColumn& col : kGaitTrialColumns)
     c[col.name] = col.required ? t.required(col.name, columns) : t.column(col.name);
+  check_trial_columns(t, columns);
   const std::string base = data_dir.empty() ? fs::path(csv).parent_path().string() : data_dir;
   std::vector<GaitTrial> out;
   std::map<std::string, long> names;
@@ -90,11 +116,7 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
       throw Error::at(csv, row.line, "a plates file (or markers in a .c3d file, which holds its plates)", "an empty field");
     g.static_markers = trial_file(csv, row.line, "static", base, get("static"), false);
     g.marker_map = marker_map_in(csv, row.line, base, get("marker_map"));
-    if (!get("coverage").empty()) try {
-        g.coverage = parse_plate_coverage(get("coverage"));
-      } catch (const Error&) {
-        throw Error::at(csv, row.line, "coverage auto, all or some", escaped(get("coverage")));
-      }
+    read_trial_options(csv, row.line, get("coverage"), get("units"), g);
     g.body = parse_body_fields(csv, row.line, g.name, get("sex"), get("height_cm"), get("weight_kg"));
     g.body.role = "original";
     out.push_back(std::move(g));
@@ -312,6 +334,7 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   mo.fps = o.fps > 0 ? o.fps : trc.rate_hz;
   mo.static_markers = trial.static_markers;
   mo.marker_map = trial.marker_map;
+  mo.units = trial.units;
   mo.remove_belt = false;  // the lab's positions, where the plates' CoP is
   MarkerReport report;
   const Motion lab = motion_from_trc(trc, mo, &report);  // once, the static trial with it
