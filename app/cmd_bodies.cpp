@@ -29,6 +29,8 @@ struct BodiesCli {
 };
 
 void run(const BodiesCli& c) {
+  check_output_name(c.out, {".csv"}, "CSV");
+  check_output_path(c.out, c.force);
   const std::vector<std::string> counts = split(c.originals, ',');
   std::int64_t of = 0, om = 0;
   const auto count = [](const std::string& text, std::int64_t& n) {

@@ -41,7 +41,7 @@ struct MotionsCli {
   double height_cm = 0;
   bool force = false;
   // A clip read from a file (BVH or markers) instead of generated.
-  std::string from, static_markers, marker_map;
+  std::string from, static_markers, marker_map, units = "auto";
 };
 
 std::vector<Category> parse_categories(const std::string& list) {
@@ -92,6 +92,7 @@ void run_from(const MotionsCli& o) {
   mo.fps = o.fps;
   mo.static_markers = o.static_markers;
   mo.marker_map = o.marker_map;
+  mo.units = parse_units(o.units);
   const Motion m = load_motion(o.from, mo);
   write_bvh(motion_to_bvh(m), o.out, o.force);
   progress("[motions] " + o.out + ": " + o.from + " on the canonical skeleton, " + std::to_string(m.size()) +
@@ -161,12 +162,17 @@ void setup(CLI::App& app) {
                                "canonical joints as BVH (--out)");
   auto* static_markers = cmd->add_option("--static", opt->static_markers, "--from .trc: the static trial");
   auto* map = cmd->add_option("--marker-map", opt->marker_map, "--from .trc: a shipped marker map or a map file");
+  auto* units = cmd->add_option("--units", opt->units,
+                                 "--from: the file's unit, over a .trc's Units header or a BVH's detected one")
+                    ->capture_default_str()
+                    ->check(CLI::IsMember({"auto", "m", "cm", "mm", "in", "cmu"}));
   cmd->add_flag("--force", opt->force, "Overwrite existing files");
   out->excludes(out_dir);
   from->needs(out)->excludes(category)->excludes(out_dir);
   for (auto* o : {seconds, seed, height, performer, take}) from->excludes(o);  // the generator's, not a file's
   static_markers->needs(from);
   map->needs(from);
+  units->needs(from);
   for (auto* o : {performers, takes, categories}) o->excludes(out)->needs(out_dir);
   for (auto* o : {category, performer, take}) o->excludes(out_dir);
   cmd->callback([opt]() {

@@ -5,6 +5,7 @@
 //                  --target male,185,95 --out out.h5
 //   ptnet transfer --model model/ --in rec.npy --source female,165,60
 //                  --target male,185,95 --out out.npy
+#include <filesystem>
 #include <iostream>
 
 #include "command.hpp"
@@ -26,9 +27,8 @@ struct TransferCli {
 };
 
 void run(const TransferCli& c) {
-  const bool npy_out = ends_with(c.out, ".npy");
-  if (!npy_out && !ends_with(c.out, ".h5"))
-    throw Error("--out: expected a .h5 or .npy file name, found \"" + c.out + "\"");
+  check_output_name(c.out, {".h5", ".hdf5", ".npy"}, "a dataset or a .npy array");
+  const bool npy_out = lower(std::filesystem::path(c.out).extension().string()) == ".npy";
   check_output_path(c.out, c.force);
   TransferOptions to;
   to.stride = c.stride;

@@ -67,6 +67,7 @@ std::string flag_of(const std::string& command, std::string_view field) {
       {"simulate", "forces_dir", "--forces"},
       {"render", "sequences", "--sequence"},
       {"forces", "contact_kpa", "--contact"},
+      {"physics-bench", "units", "the trials CSV's units column"},
   };
   for (const Renamed& r : kRenamed)
     if (r.field == field && (r.command.empty() || r.command == command)) return std::string(r.flag);

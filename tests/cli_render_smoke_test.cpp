@@ -49,7 +49,7 @@ TEST(CliRender, PngAndGifFromADataset) {
   EXPECT_EQ(out, "ptnet: error: " + data + ": frame 7 outside the sequence (5 frames: 0-4)\n");
   out.clear();
   EXPECT_EQ(run("render " + data + " -s walk_b__b1 --out " + dir.file("h.jpg"), &out), 1);
-  EXPECT_EQ(out, "ptnet: error: " + dir.file("h.jpg") + ": unknown figure type '.jpg', expected .png or .gif\n");
+  EXPECT_EQ(out, "ptnet: error: " + dir.file("h.jpg") + ": expected a .png or .gif file name (a PNG strip or a GIF animation is written), found '.jpg'\n");
 }
 
 TEST(CliInfo, DescribesADataset) {

@@ -150,6 +150,27 @@ TEST(CliGaitInputs, MotionsWritesWhatItsNameSaysAndRefusesWhatItWouldIgnore) {
   EXPECT_FALSE(d.exists("set"));
 }
 
+// Before: simulate wrote HDF5 into w.trc or w.bvh, merge into m.trc and
+// bodies CSV into b.trc (only motions checked its output's name). One
+// check (check_output_name) for every command that writes a file of one
+// format, before any work; nothing is written.
+TEST(CliGaitInputs, EveryOutputFileIsNamedForItsFormat) {
+  Dir d;
+  expect_error(d.run("bodies --males 1 --females 0 --originals 0,0 --out b.trc"), 1,
+               "b.trc: expected a .csv file name (CSV is written), found '.trc'");
+  ASSERT_EQ(d.run("-q bodies --males 1 --females 0 --originals 0,0 --out b.csv").status, 0);
+  const std::string simulate = "-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies b.csv --out ";
+  for (const char* name : {"w.trc", "w.bvh", "w"})
+    expect_error(d.run(simulate + name), 1,
+                 std::string(name) + ": expected a .h5 or .hdf5 file name (an HDF5 dataset is written), found " +
+                     (std::string(name) == "w" ? "no extension" : "'" + fs::path(name).extension().string() + "'"));
+  ASSERT_EQ(d.run(simulate + "e.H5").status, 0);  // any case
+  expect_error(d.run("merge e.H5 -o m.trc"), 1, "m.trc: expected a .h5 or .hdf5 file name");
+  expect_error(d.run("render e.H5 -s p1_walking_t1__b1 -o f.svg"), 1,
+               "f.svg: expected a .png or .gif file name (a PNG strip or a GIF animation is written), found '.svg'");
+  for (const char* name : {"b.trc", "w.trc", "w.bvh", "w", "m.trc", "f.svg"}) EXPECT_FALSE(d.exists(name)) << name;
+}
+
 TEST(CliGaitInputs, OneRuleForTheContactThreshold) {
   Dir d;
   d.write("b.csv", "id,sex,height_cm,weight_kg\nb1,female,160,55\n");
@@ -200,4 +221,46 @@ TEST(CliGaitInputs, PhysicsBenchComparesSomethingOrSaysWhyNot) {
   d.write("lab/lab.map", slurp(std::string(PTNET_SOURCE_DIR) + "/src/motion/markers/delaware.map"));
   const RunResult map = d.run("-q physics-bench --trials lab/trials.csv --out map");
   EXPECT_EQ(map.status, 0) << map.err;
+}
+
+// Before: a marker_map that is no file on row 3 of a trials CSV failed only
+// after row 2's trial was simulated, and its message lacked "t.csv:3"; a
+// clips CSV's static or marker_map likewise failed when its clip was read.
+// Now each is checked at its line before any work.
+TEST(CliGaitInputs, MarkerMapsAndStaticTrialsAreCheckedAtTheirLine) {
+  Dir d;
+  d.write("t.csv", std::string("trial,markers,static,plates,sex,height_cm,weight_kg,marker_map\nw,") + kGait +
+                       "/walk.trc," + kGait + "/walk_static.trc," + kGait + "/walk_grf.mot,male,175.0,70.0,delaware\n" +
+                       "v," + kGait + "/walk.trc,," + kGait + "/walk_grf.mot,male,175.0,70.0,nosuch.map\n");
+  expect_error(d.run("-q physics-bench --trials t.csv --out pb"), 1,
+               "t.csv:3: marker_map 'nosuch.map': no such file (shipped maps: common, delaware, plugin-gait)");
+  EXPECT_FALSE(d.exists("pb"));
+  d.write("b.csv", "id,sex,height_cm,weight_kg\nb1,female,160,55\n");
+  const std::string header = "file,subject,category,take,marker_map,static\n", clip = kGait + "/walk.trc,s1,walking,";
+  d.write("c.csv", header + clip + "1,delaware," + kGait + "/walk_static.trc\n" + clip + "2,delaware,nosuch.trc\n");
+  expect_error(d.run("-q simulate --clips c.csv --bodies b.csv --out c.h5"), 1, "c.csv:3: static 'nosuch.trc': no such file");
+  d.write("m.csv", header + clip + "1,nosuch.map,\n");
+  expect_error(d.run("-q simulate --clips m.csv --bodies b.csv --out m.h5"), 1, "m.csv:2: marker_map 'nosuch.map': no such file");
+  EXPECT_FALSE(d.exists("c.h5") || d.exists("m.h5"));
+}
+
+// Before: the .trc units error said "pass --units" from physics-bench and
+// `motions --from`, neither of which had such an option. physics-bench
+// takes a units column (and says so), motions --from takes --units.
+TEST(CliGaitInputs, TheMarkersUnitCanBeGivenWhereverTheErrorAsksForIt) {
+  Dir d;
+  const std::string row = std::string("w,") + kGait + "/walk.trc," + kGait + "/walk_static.trc," + kGait +
+                          "/walk_grf.mot,male,175.0,70.0,";
+  d.write("m.csv", std::string(kHeader).substr(0, std::string(kHeader).size() - 1) + ",units\n" + row + "m\n");
+  expect_error(d.run("-q physics-bench --trials m.csv --out m"), 1, "apart in the unit given (the trials CSV's units column), expected a pelvis [0.15, 0.4] m wide; "
+               "the values fit mm: pass the trials CSV's units column");
+  EXPECT_FALSE(d.exists("m"));
+  d.write("mm.csv", std::string(kHeader).substr(0, std::string(kHeader).size() - 1) + ",units\n" + row + "mm\n");
+  const RunResult mm = d.run("-q physics-bench --trials mm.csv --out mm");
+  EXPECT_EQ(mm.status, 0) << mm.err;
+  const std::string from = "motions --from " + kGait + "/walk.trc --static " + kGait + "/walk_static.trc ";
+  expect_error(d.run(from + "--units m --out m.bvh"), 1, "apart in the unit given (--units), expected a pelvis");
+  EXPECT_EQ(d.run("-q " + from + "--units mm --out mm.bvh").status, 0);
+  expect_error(d.run("motions --category walking --units m --out g.bvh"), 2, "--units");
+  EXPECT_FALSE(d.exists("m.bvh") || d.exists("g.bvh"));
 }

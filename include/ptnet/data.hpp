@@ -62,6 +62,13 @@ struct SequenceMeta {
   bool floor = false;     // filled by Dataset::open: /floor/<name> exists
 };
 
+// What a dataset's writers check of `path`, for before the work: a .h5 or
+// .hdf5 name (any case, as `ptnet info` reads datasets; Error "w.trc:
+// expected a .h5 or .hdf5 file name (an HDF5 dataset is written), found
+// '.trc'": check_output_name) and check_output_path (ptnet/io.hpp).
+// DatasetWriter checks it again.
+void check_dataset_output(const std::string& path, bool force);
+
 class DatasetWriter {
  public:
   DatasetWriter(const std::string& path, const DatasetInfo& info,

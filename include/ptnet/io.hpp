@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -63,16 +64,15 @@ std::string read_text_file(const std::string& path, std::uint64_t max_bytes = kM
 // The same bytes, not checked as text (archives, digests of files).
 std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes = kMaxTextFileBytes);
 
-// What keeps InputFile from opening `path`, in its words ("no such file",
-// "is a FIFO, expected a regular file", "is a folder, expected a file"),
-// and its kind; "" when it opens. For a list's files, checked before any
-// work and said at their line.
-std::string input_file_problem(const std::string& path, ErrorKind* kind = nullptr);
-
-// `file` named in a list (a CSV) whose paths are relative to `folder`: as it
-// is when empty or absolute, else folder / file, never normalised as text
-// (the filesystem resolves "link/../x.trc" through the link, as the shell).
-std::string resolved_path(const std::string& folder, const std::string& file);
+// A file named in column `column` of a list's row (a clips or trials CSV:
+// `list`, line `line`), relative to `folder` as the filesystem resolves it
+// ("link/../x.trc" through the link, never normalised as text; absolute
+// names as they are): checked as InputFile will open it (a FIFO, a
+// folder, a device refused), before any work, and noted as an input
+// (note_input); else Error (its kind) "t.csv:3: marker_map 'x.map': no such
+// file" with `hint` appended. "" for an empty name.
+std::string listed_input(const std::string& list, long line, const std::string& column, const std::string& folder,
+                         const std::string& name, const std::string& hint = "");
 
 // What a file of stat mode `mode` is, for a message: "a folder", "a FIFO",
 // "a socket", "a character device", "a block device", "a regular file".
@@ -98,6 +98,14 @@ bool existing_folder(const std::string& path);
 // a regular file, if it is an input of this run, or if its folder is missing
 // or not writable.
 void check_output_path(const std::string& path, bool force);
+
+// An output file's name says what it holds: Error "w.trc: expected a .h5 or
+// .hdf5 file name (an HDF5 dataset is written), found '.trc'" unless `path`
+// ends in one of `extensions` (".h5"; any case). Every writer of a file of
+// one format checks it before its work (check_dataset_output in data.hpp,
+// check_bvh_output in motion.hpp, figures, CSV, state dicts).
+void check_output_name(const std::string& path, std::initializer_list<const char*> extensions,
+                       const std::string& written);
 
 // The same for an output folder (a model or report folder): an existing
 // non-folder is an error; an existing non-empty folder needs `force`.

@@ -79,10 +79,13 @@ struct MarkerMap {
 // The shipped maps' names ("delaware", "plugin-gait", "common"); a map file
 // is docs/markers.md's "landmark = name name ..." lines.
 std::vector<std::string> marker_map_names();
-// The marker_map of a list's row (a clips or trials CSV) whose files are
-// relative to `folder`: a shipped map's name stays that name; a map file is
-// resolved_path(folder, it) (ptnet/io.hpp), as the list's other files.
-std::string marker_map_in(const std::string& folder, const std::string& name_or_path);
+// The marker_map of line `line` of a list (a clips or trials CSV) whose
+// files are relative to `folder`: a shipped map's name stays that name; a
+// map file is resolved and checked at its line as the list's other files
+// (listed_input, ptnet/io.hpp: "t.csv:3: marker_map 'x.map': no such file
+// (shipped maps: common, delaware, plugin-gait)"), before any work.
+std::string marker_map_in(const std::string& list, long line, const std::string& folder,
+                          const std::string& name_or_path);
 
 // ------------------------------------------------------- markers -> joints
 

@@ -60,8 +60,8 @@ Bvh read_bvh(const std::string& path);
 // and a name that says another format (check_bvh_output).
 void write_bvh(const Bvh& bvh, const std::string& path, bool force);
 // What write_bvh checks of `path`, for before the work: a .bvh name (any
-// case; Error "PATH: expected a .bvh file name: BVH is written") and
-// check_output_path (ptnet/io.hpp).
+// case; Error "w.trc: expected a .bvh file name (BVH is written), found
+// '.trc'": check_output_name) and check_output_path (ptnet/io.hpp).
 void check_bvh_output(const std::string& path, bool force);
 
 // ------------------------------------------------------- units and up axis

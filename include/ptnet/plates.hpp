@@ -48,6 +48,7 @@ struct GaitTrial {
   std::string marker_map;                      // "": chosen
   BodySpec body;                               // the subject (sex, stature, mass)
   PlateCoverage coverage = PlateCoverage::automatic;
+  Units units = Units::automatic;  // the markers' unit; automatic: the file's Units header
 };
 // The columns of a trials CSV, the one list that read_gait_trials reads,
 // `ptnet physics-bench --help` prints and docs/physics.md documents (a test
@@ -58,8 +59,9 @@ struct GaitTrialColumn {
 };
 inline constexpr GaitTrialColumn kGaitTrialColumns[] = {
     {"trial", true},     {"markers", true},     {"plates", true},    {"sex", true},        {"height_cm", true},
-    {"weight_kg", true}, {"static", false},     {"marker_map", false}, {"coverage", false}};
-// "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage]"
+    {"weight_kg", true}, {"static", false},     {"marker_map", false}, {"coverage", false},
+    {"units", false}};
+// "trial,markers,plates,sex,height_cm,weight_kg[,static,marker_map,coverage,units]"
 std::string gait_trial_columns_text();
 
 // A trials CSV (docs/physics.md; kGaitTrialColumns). Paths (markers, plates,

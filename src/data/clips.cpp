@@ -59,7 +59,6 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
     r.line = number;
     const std::string& file = get(c_file);
     if (file.empty()) throw Error::at(path, number, "a file name", "an empty field");
-    r.file = resolved_path(folder.string(), file);
     r.subject = get(c_subject);
     if (r.subject.empty()) throw Error::at(path, number, "a subject", "an empty field");
     try {
@@ -88,12 +87,11 @@ std::vector<ClipRow> parse_clips_csv(const std::string& text, const std::string&
     r.activity = lower(get(c_activity));
     r.up = lower(get(c_up));
     if (!r.up.empty() && r.up != "y" && r.up != "z") throw Error::at(path, number, "up y or z", escaped(get(c_up)));
-    r.static_markers = resolved_path(folder.string(), get(c_static));
-    r.marker_map = marker_map_in(folder.string(), get(c_map));
-    ErrorKind kind{};  // a FIFO would block the run, a device never end
-    if (const std::string problem = input_file_problem(r.file, &kind); !problem.empty())
-      throw Error(path + ":" + std::to_string(number) + ": clip file " + escaped(file) + ": " + problem, kind);
-    note_input(r.file);  // no output of the run may replace it: checked before the work
+    // Checked before the work (a FIFO would block the run, a device never
+    // end) and noted: no output of the run may replace them.
+    r.file = listed_input(path, number, "clip file", folder.string(), file);
+    r.static_markers = listed_input(path, number, "static", folder.string(), get(c_static));
+    r.marker_map = marker_map_in(path, number, folder.string(), get(c_map));
     rows.push_back(r);
   }
   if (rows.empty()) throw Error::in(path, "no clips listed after the header");

@@ -127,8 +127,14 @@ struct DatasetWriter::Impl {
   const std::string& path() const { return out.path(); }
 };
 
+void check_dataset_output(const std::string& path, bool force) {
+  check_output_name(path, {".h5", ".hdf5"}, "an HDF5 dataset");
+  check_output_path(path, force);
+}
+
 DatasetWriter::DatasetWriter(const std::string& path, const DatasetInfo& info,
                              const std::vector<BodySpec>& bodies, bool force) {
+  check_dataset_output(path, force);
   h5::quiet();
   auto impl = std::make_unique<Impl>(path, force);
   impl->info = info;

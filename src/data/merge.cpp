@@ -100,7 +100,7 @@ bool parse_shard(std::string_view text, int& index, int& count) {
 
 int merge_datasets(const std::vector<std::string>& inputs, const std::string& out_path, bool force) {
   if (inputs.empty()) throw Error("merge: no input datasets");
-  check_output_path(out_path, force);
+  check_dataset_output(out_path, force);
   std::vector<Dataset> sets;
   for (const auto& path : inputs) sets.push_back(Dataset::open(path));
   const Dataset& first = sets.front();

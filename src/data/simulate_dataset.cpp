@@ -145,7 +145,7 @@ int check_run(const std::vector<ClipSource>& clips, const std::vector<BodySpec>&
   if (bodies.empty()) throw Error("simulate: no bodies to simulate on");
   check_range("fps", options.fps, kFpsRange);
   check_names(clips, bodies);
-  check_output_path(out_path, options.force);  // before any work
+  check_dataset_output(out_path, options.force);  // before any work
   check_forces_dir(clips, bodies, out_path, options);
   if (options.threads < 0 || options.threads > max_threads())
     throw Error("simulate: threads must be in 0-" + std::to_string(max_threads()) + ", found " +

@@ -182,7 +182,7 @@ nlohmann::json split_record(const BenchClips& clips) {
 }  // namespace
 
 void write_bench_training_set(const std::string& path, const BenchOptions& o, int bodies, bool force) {
-  check_output_path(path, force);
+  check_dataset_output(path, force);
   const BenchClips clips = load_bench_clips(o);
   std::vector<ClipSource> parts;
   for (const BenchClip& c : clips.clips) {

@@ -64,7 +64,7 @@ PressureSequence read_csv_frames(const std::string& path, const MatSpec& mat, do
 void import_recordings(const std::string& manifest, const std::string& out,
                        const ImportOptions& options, bool force) {
   namespace fs = std::filesystem;
-  check_output_path(out, force);
+  check_dataset_output(out, force);
   const CsvTable t = read_csv(manifest);
   const std::string columns = "subject,sex,height_cm,weight_kg,file[,category]";
   const int c_subject = t.required("subject", columns), c_sex = t.required("sex", columns),
@@ -129,7 +129,7 @@ void import_recordings(const std::string& manifest, const std::string& out,
 
 void write_finetune_set(const std::string& real_path, const std::vector<std::string>& subjects,
                         const std::string& out, bool force) {
-  check_output_path(out, force);
+  check_dataset_output(out, force);
   const Dataset real = Dataset::open(real_path);
   if (subjects.empty()) throw Error::in(real_path, "no fine-tuning subjects given");
   std::vector<std::string> ids;

@@ -229,7 +229,7 @@ void read_again(PressureSequence& seq, const std::vector<float>& gain, const Sen
 // The one mechanism for both kinds of subjects: plan -> simulate -> degrade
 // -> write.
 void write_standin(const std::string& path, const StandinOptions& o, bool force) {
-  check_output_path(path, force);
+  check_dataset_output(path, force);
   auto say = [&](const std::string& s) {
     if (o.progress) o.progress(progress_line("standin", s));
   };

@@ -111,6 +111,7 @@ void export_state_dict(const std::string& model_dir, const std::string& out_path
   const std::string config_path = files.config(), weights_path = files.weights();
   note_input(config_path);
   note_input(weights_path);
+  check_output_name(out_path, {".pt", ".pth"}, "a PyTorch state dict");
   check_output_path(out_path, force);
   const ModelDir dir = read_model_dir(model_dir);
   PressureTransferNet net(dir.model);

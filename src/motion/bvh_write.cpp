@@ -150,8 +150,7 @@ std::string format_bvh(const Bvh& bvh) {
 }
 
 void check_bvh_output(const std::string& path, bool force) {
-  if (lower(std::filesystem::path(path).extension().string()) != ".bvh")
-    throw Error::in(path, "expected a .bvh file name: BVH is written");
+  check_output_name(path, {".bvh"}, "BVH");
   check_output_path(path, force);
 }
 

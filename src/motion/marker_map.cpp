@@ -213,10 +213,38 @@ const std::vector<std::string>& landmark_names() {
 
 namespace {
 
-// One map line "landmark = names" into `map`; `owner` holds, per marker
-// key, the single landmark that named it first and the line.
-void add_map_line(MarkerMap& map, std::string_view text, const std::string& source, long n,
-                  std::unordered_map<std::string, std::pair<std::string, long>>& owner) {
+// Per marker key, the landmark (or set) that named it first and its line.
+using NameOwners = std::unordered_map<std::string, std::pair<std::string, long>>;
+struct MapOwners {
+  NameOwners single;  // single landmarks: a name for one only
+  NameOwners sided;   // landmarks and sets of a side (r_, l_): a name for one side only
+};
+
+// 'r' or 'l' for a landmark or set of a side ("r_thigh", "l_asis"), else 0.
+char side_of(const std::string& landmark) {
+  return landmark.size() > 2 && landmark[1] == '_' && (landmark[0] == 'r' || landmark[0] == 'l') ? landmark[0] : 0;
+}
+
+// A marker serves one side: a name given to a landmark or set of one side and
+// to one of the other (r_thigh = L.Thigh.Upper beside l_thigh's) is refused at
+// its line; within one side a name may serve several (a knee marker in the
+// thigh and shank sets).
+void check_one_side(const std::string& key, const std::vector<std::string>& names, const std::string& source, long n,
+                    NameOwners& sided) {
+  const char side = side_of(key);
+  if (side == 0) return;
+  for (const std::string& name : names) {
+    const auto [it, fresh] = sided.emplace(detail::marker_key(name), std::make_pair(key, n));
+    if (!fresh && side_of(it->second.first) != side)
+      throw Error::at(source, n, "each marker name on one side",
+                      escaped(name) + " for " + key + " and for " + it->second.first + " (line " +
+                          std::to_string(it->second.second) + ")");
+  }
+}
+
+// One map line "landmark = names" into `map`, its names checked against
+// those of the lines before (`owners`).
+void add_map_line(MarkerMap& map, std::string_view text, const std::string& source, long n, MapOwners& owners) {
   std::string line(text.substr(0, text.find('#')));
   line = trim(line);
   if (line.empty()) return;
@@ -236,12 +264,13 @@ void add_map_line(MarkerMap& map, std::string_view text, const std::string& sour
     if (e.landmark == key) throw Error::at(source, n, "each landmark once", escaped(key) + " again");
   if (index < detail::kLandmarkCount)  // a single landmark: its names are no other's
     for (const std::string& name : names) {
-      const auto [it, fresh] = owner.emplace(detail::marker_key(name), std::make_pair(key, n));
+      const auto [it, fresh] = owners.single.emplace(detail::marker_key(name), std::make_pair(key, n));
       if (!fresh && it->second.first != key)
         throw Error::at(source, n, "each marker name for one landmark",
                         escaped(name) + " for " + key + " and for " + it->second.first + " (line " +
                             std::to_string(it->second.second) + ")");
     }
+  check_one_side(key, names, source, n, owners.sided);
   map.entries.push_back({key, names});
 }
 
@@ -250,9 +279,9 @@ void add_map_line(MarkerMap& map, std::string_view text, const std::string& sour
 MarkerMap parse_marker_map(std::string_view text, const std::string& source) {
   MarkerMap map;
   map.name = std::filesystem::path(source).stem().string();
-  std::unordered_map<std::string, std::pair<std::string, long>> owner;
+  MapOwners owners;
   LineReader lines(text);
-  for (std::string_view line; lines.next(line);) add_map_line(map, line, source, lines.number(), owner);
+  for (std::string_view line; lines.next(line);) add_map_line(map, line, source, lines.number(), owners);
   if (map.entries.empty()) throw Error::in(source, "no landmarks (expected lines 'landmark = marker names')");
   return map;
 }

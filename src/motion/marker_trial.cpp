@@ -79,7 +79,7 @@ double trial_scale(const Trc& trc, const ResolvedMap& r, double given_mpu, doubl
   if (fallback_mpu > 0 && kPelvisWidthM.contains(width * fallback_mpu)) return fallback_mpu;
   const std::string fits = fitting_unit(width);
   throw Error::in(trc.source, "the ASIS markers are " + number_text(width * scale) + " m apart " +
-                                  (given_mpu > 0 ? "in the " + field_text("units") + " given"
+                                  (given_mpu > 0 ? "in the unit given (" + field_text("units") + ")"
                                                  : "in its Units (" + number_text(trc.metres_per_unit) + " m)") +
                                   ", expected a pelvis " + kPelvisWidthM.text() + " m wide" +
                                   (fits.empty() ? std::string(": the map's ASIS markers are not the pelvis?")

@@ -52,12 +52,7 @@ namespace {
 std::string trial_file(const std::string& csv, long line, const char* column, const std::string& base,
                        const std::string& name, bool required) {
   if (required && name.empty()) throw Error::at(csv, line, std::string("a file in column ") + column, "an empty field");
-  const std::string path = resolved_path(base, name);
-  ErrorKind kind{};
-  if (const std::string problem = path.empty() ? "" : input_file_problem(path, &kind); !problem.empty())
-    throw Error(csv + ":" + std::to_string(line) + ": " + column + " " + escaped(name) + ": " + problem, kind);
-  if (!path.empty()) note_input(path);  // no output of the bench may replace it: checked before the work
-  return path;
+  return listed_input(csv, line, column, base, name);  // no output of the bench may replace it
 }
 
 // Each trial's name is a file name of the report (TRIAL_sim.mot, ...) and
@@ -73,6 +68,31 @@ void check_trial_name(const std::string& csv, long line, const std::string& name
                                                           std::to_string(it->second) + "'s trial too");
 }
 
+// The header names only columns of kGaitTrialColumns (a misspelt optional
+// column would be ignored: "unit" for units).
+void check_trial_columns(const CsvTable& t, const std::string& columns) {
+  for (const std::string& name : t.header) {
+    const bool known = std::any_of(std::begin(kGaitTrialColumns), std::end(kGaitTrialColumns),
+                                   [&](const GaitTrialColumn& c) { return name == c.name; });
+    if (!known) throw Error::at(t.source, t.header_line, "only the columns " + columns, "column " + escaped(name));
+  }
+}
+
+// A row's optional fields: the coverage and the markers' units.
+void read_trial_options(const std::string& csv, long line, const std::string& coverage, const std::string& units,
+                        GaitTrial& g) {
+  if (!coverage.empty()) try {
+      g.coverage = parse_plate_coverage(coverage);
+    } catch (const Error&) {
+      throw Error::at(csv, line, "coverage auto, all or some", escaped(coverage));
+    }
+  if (!units.empty()) try {
+      g.units = parse_units(units);
+    } catch (const Error&) {
+      throw Error::at(csv, line, "units auto, m, cm, mm, in or cmu", escaped(units));
+    }
+}
+
 }  // namespace
 
 std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::string& data_dir) {
@@ -81,6 +101,7 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
   std::map<std::string, int> c;
   for (const GaitTrialColumn& col : kGaitTrialColumns)
     c[col.name] = col.required ? t.required(col.name, columns) : t.column(col.name);
+  check_trial_columns(t, columns);
   const std::string base = data_dir.empty() ? fs::path(csv).parent_path().string() : data_dir;
   std::vector<GaitTrial> out;
   std::map<std::string, long> names;
@@ -94,12 +115,8 @@ std::vector<GaitTrial> read_gait_trials(const std::string& csv, const std::strin
     if (g.plates.empty() && lower(fs::path(g.markers).extension().string()) != ".c3d")
       throw Error::at(csv, row.line, "a plates file (or markers in a .c3d file, which holds its plates)", "an empty field");
     g.static_markers = trial_file(csv, row.line, "static", base, get("static"), false);
-    g.marker_map = marker_map_in(base, get("marker_map"));
-    if (!get("coverage").empty()) try {
-        g.coverage = parse_plate_coverage(get("coverage"));
-      } catch (const Error&) {
-        throw Error::at(csv, row.line, "coverage auto, all or some", escaped(get("coverage")));
-      }
+    g.marker_map = marker_map_in(csv, row.line, base, get("marker_map"));
+    read_trial_options(csv, row.line, get("coverage"), get("units"), g);
     g.body = parse_body_fields(csv, row.line, g.name, get("sex"), get("height_cm"), get("weight_kg"));
     g.body.role = "original";
     out.push_back(std::move(g));
@@ -161,6 +178,29 @@ PlateFeet plate_feet(const ForcePlates& fp, const Motion& lab, int up, const Phy
     }
   }
   return out;
+}
+
+// The plates' samples within the markers' time span [t0, t1] (1 us either
+// side: times written to 6 decimals): a contact that runs past either end
+// of the markers is cut in the plates as in the simulation, so neither
+// counts it whole, and no plate sample is given to a foot the markers no
+// longer place.
+ForcePlates within_span(ForcePlates fp, double t0, double t1) {
+  constexpr double kSlackS = 1e-6;
+  const std::vector<double>& t = fp.time_s;
+  const auto a = std::lower_bound(t.begin(), t.end(), t0 - kSlackS) - t.begin();
+  const auto b = std::max(a, std::upper_bound(t.begin(), t.end(), t1 + kSlackS) - t.begin());
+  const std::size_t N = t.size();
+  auto cut = [&](auto& v) {
+    if (v.size() == N) v = std::decay_t<decltype(v)>(v.begin() + a, v.begin() + b);
+  };
+  for (ForcePlates::Plate& p : fp.plates) {
+    cut(p.force_n);
+    cut(p.cop_m);
+    cut(p.free_moment_nm);
+  }
+  cut(fp.time_s);
+  return fp;
 }
 
 // The contacts of each foot's force ([2][N], N) at times `time_s` ([N]),
@@ -294,6 +334,7 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   mo.fps = o.fps > 0 ? o.fps : trc.rate_hz;
   mo.static_markers = trial.static_markers;
   mo.marker_map = trial.marker_map;
+  mo.units = trial.units;
   mo.remove_belt = false;  // the lab's positions, where the plates' CoP is
   MarkerReport report;
   const Motion lab = motion_from_trc(trc, mo, &report);  // once, the static trial with it
@@ -310,7 +351,8 @@ GaitTrialResult run_gait_trial(const GaitTrial& trial, const PhysicsBenchOptions
   r.table = force_table(trace, lab, body);  // each foot's CoP in the lab, as the plates'
   r.time_s = r.table.time_s;
   const double bw = body.mass_kg() * anthropometry::kGravity;
-  const ForcePlates fp = read_force_plates(trial.plates.empty() ? trial.markers : trial.plates, o.contact_n);
+  ForcePlates fp = read_force_plates(trial.plates.empty() ? trial.markers : trial.plates, o.contact_n);
+  if (!r.time_s.empty()) fp = within_span(std::move(fp), r.time_s.front(), r.time_s.back());
   const int up = report.up_axis == UpAxis::y ? 1 : 2;
   r.plates = plates_source(fp, plate_feet(fp, lab, up, o), r.time_s, 1 / r.fps, bw, o);
   r.simulated = simulated_source(r.table, bw, o);

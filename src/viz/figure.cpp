@@ -325,9 +325,8 @@ void render_figure(const Dataset& d, const std::vector<std::string>& names, cons
                 ": expected at least one sequence name, found none");
   if (const std::string twice = first_repeat(names); !twice.empty())
     throw Error("render: " + field_text("sequences") + ": " + escaped(twice) + " given twice");
+  check_output_name(out, {".png", ".gif"}, "a PNG strip or a GIF animation");
   const std::string ext = lower(std::filesystem::path(out).extension().string());
-  if (ext != ".png" && ext != ".gif")
-    throw Error::in(out, "unknown figure type '" + ext + "', expected .png or .gif");
   check_output_path(out, force);
   std::vector<PressureSequence> seqs;
   std::vector<FigurePanel> panels;
