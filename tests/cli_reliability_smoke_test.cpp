@@ -124,33 +124,36 @@ TEST_F(Reliability, BodyCountsHaveTheirRange) {
 
 TEST_F(Reliability, SimulateNeverReplacesItsBodiesCsv) {
   const std::string before = slurp(dir_ / "bodies.csv");
+  // A .csv name is no dataset's: refused by its format first.
   const RunResult r = run("-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies bodies.csv "
                           "--out bodies.csv --force");
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("is the same file as the input bodies.csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bodies.csv: expected a .h5 or .hdf5 file name"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(dir_ / "bodies.csv"), before);
-  // The same through another name (a hard link).
-  fs::create_hard_link(dir_ / "bodies.csv", dir_ / "alias.csv");
+  // The same file through a dataset's name (a hard link): refused as the input.
+  fs::create_hard_link(dir_ / "bodies.csv", dir_ / "alias.h5");
   const RunResult a = run("-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies bodies.csv "
-                          "--out alias.csv --force");
+                          "--out alias.h5 --force");
   EXPECT_EQ(a.status, 1);
   EXPECT_NE(a.err.find("same file as the input"), std::string::npos) << a.err;
   EXPECT_EQ(slurp(dir_ / "bodies.csv"), before);
 }
 
 TEST_F(Reliability, AFifoOutputIsRefusedEvenWithForce) {
-  const fs::path fifo = dir_ / "device";
-  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string name : {"device.h5", "device.csv"}) {
+    const fs::path fifo = dir_ / name;
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  }
   const RunResult r = run("-q simulate --embedded --performers 1 --takes 1 --seconds 2 --bodies bodies.csv "
-                          "--out device --force");
+                          "--out device.h5 --force");
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err, "ptnet: error: device: is a FIFO, not a regular file; refusing to replace it (even with --force)\n");
+  EXPECT_EQ(r.err, "ptnet: error: device.h5: is a FIFO, not a regular file; refusing to replace it (even with --force)\n");
   struct stat st;
-  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  ASSERT_EQ(::stat((dir_ / "device.h5").c_str(), &st), 0);
   EXPECT_TRUE(S_ISFIFO(st.st_mode));
-  const RunResult b = run("bodies --out device --force");
+  const RunResult b = run("bodies --out device.csv --force");
   EXPECT_EQ(b.status, 1);
-  EXPECT_NE(b.err.find("is a FIFO"), std::string::npos);
+  EXPECT_NE(b.err.find("is a FIFO"), std::string::npos) << b.err;
 }
 
 TEST_F(Reliability, TransferNeverReplacesItsInput) {
