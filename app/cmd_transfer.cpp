@@ -26,9 +26,16 @@ struct TransferCli {
   bool force = false, raw = false;
 };
 
+// What a sequence file holds, by its extension (any case): a [T, rows,
+// cols] .npy array or else a ptnet dataset; one rule for --in and --out.
+enum class SequenceFile { dataset, npy };
+
+SequenceFile sequence_file_of(const std::string& path) {
+  return lower(std::filesystem::path(path).extension().string()) == ".npy" ? SequenceFile::npy : SequenceFile::dataset;
+}
+
 void run(const TransferCli& c) {
   check_output_name(c.out, {".h5", ".hdf5", ".npy"}, "a dataset or a .npy array");
-  const bool npy_out = lower(std::filesystem::path(c.out).extension().string()) == ".npy";
   check_output_path(c.out, c.force);
   TransferOptions to;
   to.stride = c.stride;
@@ -47,7 +54,7 @@ void run(const TransferCli& c) {
   DatasetInfo info;
   info.mat = net.model().mat;
   info.fps = net.model().fps;
-  if (ends_with(c.in, ".npy")) {
+  if (sequence_file_of(c.in) == SequenceFile::npy) {
     if (c.source.empty()) throw Error("--source is required with a .npy input (e.g. --source female,165,60)");
     if (!c.sequence.empty()) throw Error("--sequence applies to a dataset input, not " + c.in);
     src = read_npy_sequence(c.in, net.model().mat, net.model().fps);
@@ -69,7 +76,7 @@ void run(const TransferCli& c) {
               << " cm " << source.weight_kg << " kg -> " << sex_name(target.sex) << " " << target.height_cm
               << " cm " << target.weight_kg << " kg\n";
   PressureSequence out = net.run(src, source, target);
-  if (npy_out) {
+  if (sequence_file_of(c.out) == SequenceFile::npy) {
     write_npy_sequence(c.out, out, c.force);
     warn();
     return;

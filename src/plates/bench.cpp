@@ -238,19 +238,19 @@ ForceSource plates_source(const ForcePlates& fp, const PlateFeet& pf, const std:
   return s;
 }
 
-// The simulator's force (ForceTable) as a source.
-ForceSource simulated_source(const ForceTable& table, double bw, const PhysicsBenchOptions& o) {
+// A source named `name` over the frames of `table`: `frame(t, fb, u)` gives
+// frame t's per-foot load (BW) and CoP along the foot and returns its total
+// (BW); the contacts are the feet's loads above o.contact_n.
+template <class Frame>
+ForceSource source_over(const char* name, const ForceTable& table, double bw, const PhysicsBenchOptions& o,
+                        Frame frame) {
   ForceSource s;
-  s.name = "simulated";
+  s.name = name;
   std::array<std::vector<double>, 2> feet;
   for (std::size_t t = 0; t < table.time_s.size(); ++t) {
     std::array<double, 2> fb{}, u{};
-    for (std::size_t k = 0; k < 2; ++k) {
-      fb[k] = table.foot_n[t][k] / bw;
-      u[k] = table.cop_u[t][k];
-      feet[k].push_back(fb[k] * bw);
-    }
-    s.total_bw.push_back(table.total_n[t] / bw);
+    s.total_bw.push_back(frame(t, fb, u));
+    for (std::size_t k = 0; k < 2; ++k) feet[k].push_back(fb[k] * bw);
     s.foot_bw.push_back(fb);
     s.cop_u.push_back(u);
   }
@@ -258,27 +258,29 @@ ForceSource simulated_source(const ForceTable& table, double bw, const PhysicsBe
   return s;
 }
 
+// The simulator's force (ForceTable) as a source.
+ForceSource simulated_source(const ForceTable& table, double bw, const PhysicsBenchOptions& o) {
+  return source_over("simulated", table, bw, o, [&](std::size_t t, std::array<double, 2>& fb, std::array<double, 2>& u) {
+    for (std::size_t k = 0; k < 2; ++k) {
+      fb[k] = table.foot_n[t][k] / bw;
+      u[k] = table.cop_u[t][k];
+    }
+    return table.total_n[t] / bw;
+  });
+}
+
 // The naive reference: one body weight shared by the feet the simulator
 // puts in contact, each pressing at its middle.
 ForceSource naive_source(const ForceTable& table, double bw, const PhysicsBenchOptions& o) {
-  ForceSource s;
-  s.name = "naive";
-  std::array<std::vector<double>, 2> feet;
-  for (std::size_t t = 0; t < table.time_s.size(); ++t) {
+  return source_over("naive", table, bw, o, [&](std::size_t t, std::array<double, 2>& fb, std::array<double, 2>& u) {
     const bool on[2] = {table.foot_n[t][0] > o.contact_n, table.foot_n[t][1] > o.contact_n};
     const int count = on[0] + on[1];
-    std::array<double, 2> fb{}, u{};
     for (std::size_t k = 0; k < 2; ++k) {
       fb[k] = on[k] ? 1.0 / count : 0.0;
       u[k] = on[k] ? 0.5 : NAN;
-      feet[k].push_back(fb[k] * bw);
     }
-    s.total_bw.push_back(count ? 1.0 : 0.0);
-    s.foot_bw.push_back(fb);
-    s.cop_u.push_back(u);
-  }
-  s.contacts = foot_contacts(table.time_s, feet, o.contact_n);
-  return s;
+    return count ? 1.0 : 0.0;
+  });
 }
 
 // What a source's figures are compared by: the thresholds of `o` for a
