@@ -16,7 +16,7 @@
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_bodies {
 namespace {
 
 struct BodiesCli {
@@ -62,4 +62,4 @@ void setup(CLI::App& app) {
 
 }  // namespace
 PTNET_COMMAND(30, setup);
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_bodies

@@ -20,7 +20,7 @@
 #include "ptnet/train.hpp"
 #include "ptnet/viz.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_demo {
 namespace {
 
 // Training threads (fewer on a one-core machine): on an idle 2-core machine
@@ -141,4 +141,4 @@ void setup(CLI::App& app) {
 
 }  // namespace
 PTNET_COMMAND(90, setup);
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_demo

@@ -13,7 +13,7 @@
 #include "ptnet/eval.hpp"
 #include "ptnet/transfer.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_evaluate {
 namespace {
 
 void run(EvaluationRun r) {
@@ -45,4 +45,4 @@ void setup(CLI::App& app) {
 
 }  // namespace
 PTNET_COMMAND(80, setup);
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_evaluate

@@ -7,7 +7,7 @@
 #include "command.hpp"
 #include "ptnet/state_dict.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_export {
 namespace {
 
 struct ExportCli {
@@ -50,4 +50,4 @@ void setup(CLI::App& app) {
 
 PTNET_COMMAND(58, setup);
 
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_export

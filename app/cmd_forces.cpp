@@ -8,6 +8,7 @@
 #include "ptnet/data.hpp"
 #include "ptnet/error.hpp"
 
+namespace ptnet::cli::cmd_forces {
 namespace {
 
 struct ForcesCli {
@@ -51,3 +52,4 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(62, setup);
+}  // namespace ptnet::cli::cmd_forces

@@ -16,6 +16,7 @@
 #include "ptnet/strings.hpp"
 #include "ptnet/transfer.hpp"
 
+namespace ptnet::cli::cmd_har_bench {
 namespace {
 
 struct HarBenchCli {
@@ -149,3 +150,4 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(72, setup);
+}  // namespace ptnet::cli::cmd_har_bench

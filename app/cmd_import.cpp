@@ -10,6 +10,7 @@
 #include "ptnet/har.hpp"
 #include "ptnet/strings.hpp"
 
+namespace ptnet::cli::cmd_import {
 namespace {
 
 struct ImportCli {
@@ -57,3 +58,4 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(68, setup);
+}  // namespace ptnet::cli::cmd_import

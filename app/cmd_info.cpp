@@ -21,7 +21,7 @@
 #include "ptnet/sim.hpp"
 #include "ptnet/strings.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_info {
 namespace {
 
 struct InfoCli {
@@ -343,4 +343,4 @@ void setup(CLI::App& app) {
 PTNET_COMMAND(20, setup);
 
 }  // namespace
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_info

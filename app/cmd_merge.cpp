@@ -8,7 +8,7 @@
 #include "command.hpp"
 #include "ptnet/data.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_merge {
 namespace {
 
 struct MergeCli {
@@ -39,4 +39,4 @@ void setup(CLI::App& app) {
 
 }  // namespace
 PTNET_COMMAND(45, setup);
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_merge

@@ -20,7 +20,7 @@
 #include "ptnet/motion.hpp"
 #include "ptnet/strings.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_motions {
 namespace {
 
 struct MotionsCli {
@@ -192,4 +192,4 @@ void setup(CLI::App& app) {
 
 PTNET_COMMAND(10, setup);
 
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_motions

@@ -16,7 +16,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/plates.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_physics_bench {
 namespace {
 
 struct PhysicsBenchCli {
@@ -69,4 +69,4 @@ void setup(CLI::App& app) {
 
 }  // namespace
 PTNET_COMMAND(65, setup);
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_physics_bench

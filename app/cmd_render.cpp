@@ -6,6 +6,7 @@
 #include "ptnet/error.hpp"
 #include "ptnet/viz.hpp"
 
+namespace ptnet::cli::cmd_render {
 namespace {
 
 struct RenderCli {
@@ -51,3 +52,4 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(60, setup);
+}  // namespace ptnet::cli::cmd_render

@@ -20,7 +20,7 @@
 #include "ptnet/io.hpp"
 #include "ptnet/simulate_dataset.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_simulate {
 namespace {
 
 // simulate_dataset allocates each chunk's sequences (MBs each) and frees them
@@ -170,4 +170,4 @@ void setup(CLI::App& app) {
 
 }  // namespace
 PTNET_COMMAND(40, setup);
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_simulate

@@ -7,6 +7,7 @@
 #include "command.hpp"
 #include "ptnet/har.hpp"
 
+namespace ptnet::cli::cmd_standin {
 namespace {
 
 struct StandinCli {
@@ -69,3 +70,4 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(69, setup);
+}  // namespace ptnet::cli::cmd_standin

@@ -26,7 +26,7 @@
 #include "ptnet/npy.hpp"
 #include "ptnet/stream.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_stream {
 namespace {
 
 struct StreamCli {
@@ -245,4 +245,4 @@ void setup(CLI::App& app) {
 
 PTNET_COMMAND(56, setup);
 
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_stream

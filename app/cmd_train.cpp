@@ -16,7 +16,7 @@
 #include "ptnet/strings.hpp"
 #include "ptnet/train.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_train {
 namespace {
 
 struct TrainCli {
@@ -240,4 +240,4 @@ void add_run_options(CLI::App* cmd, TrainCli* opt) {
 
 PTNET_COMMAND(50, setup);
 
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_train

@@ -17,7 +17,7 @@
 #include "ptnet/strings.hpp"
 #include "ptnet/transfer.hpp"
 
-namespace ptnet::cli {
+namespace ptnet::cli::cmd_transfer {
 namespace {
 
 struct TransferCli {
@@ -127,4 +127,4 @@ void setup(CLI::App& app) {
 
 PTNET_COMMAND(55, setup);
 
-}  // namespace ptnet::cli
+}  // namespace ptnet::cli::cmd_transfer

@@ -15,6 +15,7 @@
 #include "ptnet/strings.hpp"
 #include "ptnet/transfer.hpp"
 
+namespace ptnet::cli::cmd_validate_har {
 namespace {
 
 struct ValidateHarCli {
@@ -194,3 +195,4 @@ void setup(CLI::App& app) {
 }  // namespace
 
 PTNET_COMMAND(70, setup);
+}  // namespace ptnet::cli::cmd_validate_har

@@ -1,8 +1,10 @@
 // app/command.hpp: how a subcommand joins the ptnet tool.
 //
-// Each app/cmd_<name>.cpp defines `void setup(CLI::App& app)` that adds its
-// subcommand (options bound to an options struct, a callback that runs it) and
-// registers it with PTNET_COMMAND(order, setup). main() adds them in order.
+// Each app/cmd_<name>.cpp defines, in namespace ptnet::cli::cmd_<name> (the
+// unity build compiles the commands together), `void setup(CLI::App& app)`
+// that adds its subcommand (options bound to an options struct, a callback
+// that runs it) and registers it with PTNET_COMMAND(order, setup). main()
+// adds them in order.
 // Naming: the struct holding a command's option values is `<Command>Cli`
 // (TrainCli, ValidateHarCli); `*Options` names the library's option structs.
 #pragma once

@@ -12,6 +12,15 @@
 set(PTNET_STAGES "" CACHE INTERNAL "stage libraries defined so far")
 set(PTNET_STAGE_TABLE "" CACHE INTERNAL "per stage: name|depends|headers|files, for the include check")
 
+# ptnet_unity(TARGET): compile TARGET's sources in batches of
+# PTNET_UNITY_BATCH (PTNET_UNITY_BUILD, the top CMakeLists.txt). The files of
+# a target share their anonymous namespaces then: two files of one stage may
+# not define the same internal name.
+function(ptnet_unity target)
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ${PTNET_UNITY_BUILD}
+                                             UNITY_BUILD_BATCH_SIZE ${PTNET_UNITY_BATCH})
+endfunction()
+
 function(ptnet_stage name)
   cmake_parse_arguments(S "TORCH" "" "SOURCES;HEADERS;DEPENDS;LIBS" ${ARGN})
   if(NOT S_SOURCES)
@@ -56,6 +65,7 @@ function(ptnet_stage name)
   # The shared library libptnet.so (cmake/install.cmake) and the Python module
   # are made of the stages' objects: position-independent code.
   set_target_properties(ptnet_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  ptnet_unity(ptnet_${name})
   target_compile_definitions(ptnet_${name} PUBLIC PTNET_VERSION="${PROJECT_VERSION}")
   target_link_libraries(ptnet_${name} PUBLIC Eigen3::Eigen nlohmann_json::nlohmann_json Threads::Threads)
   foreach(dep ${S_DEPENDS})

@@ -164,14 +164,14 @@ struct Populations {
 // The real windows: recorded bodies' training parts; deployment bodies'
 // training parts (the oracle) and test parts. first_window[c][j]: recorded
 // body j's first window of clip c.
-struct RealWindows {
+struct BenchWindows {
   Windows recorded, oracle, test;
   std::vector<std::vector<int>> first_window;
 };
 
-RealWindows cut_windows(const BenchClips& clips, const Populations& p, const BenchResult& r, const BenchOptions& o) {
+BenchWindows cut_windows(const BenchClips& clips, const Populations& p, const BenchResult& r, const BenchOptions& o) {
   const int R = int(r.recorded.size()), D = int(r.deployment.size());
-  RealWindows w;
+  BenchWindows w;
   w.first_window.assign(clips.clips.size(), std::vector<int>(std::size_t(R), 0));
   for (std::size_t c = 0; c < clips.clips.size(); ++c) {
     const BenchClip& clip = clips.clips[c];
@@ -209,7 +209,7 @@ PressureSequence synthesise(const std::string& name, const PressureSequence& par
 // The training sources: recorded, one per synthesis, oracle. A synthesis
 // makes clip c's training part of recorded body (c + d) mod R into
 // deployment body d's: as many windows as the oracle's.
-std::vector<Synthesis> synthesise_sources(const BenchClips& clips, const Populations& p, const RealWindows& real,
+std::vector<Synthesis> synthesise_sources(const BenchClips& clips, const Populations& p, const BenchWindows& real,
                                           const BenchResult& r, const BenchOptions& o, const TransferFn& transfer) {
   const int R = int(r.recorded.size()), D = int(r.deployment.size());
   std::vector<Synthesis> sources;
@@ -248,7 +248,7 @@ std::vector<Synthesis> synthesise_sources(const BenchClips& clips, const Populat
 
 // The pseudo-label table (when mean shift finds 2+ clusters): synthesised
 // windows take their source window's label.
-void add_pseudo_table(std::vector<Synthesis>& sources, RealWindows& real, BenchResult& r, const BenchOptions& o) {
+void add_pseudo_table(std::vector<Synthesis>& sources, BenchWindows& real, BenchResult& r, const BenchOptions& o) {
   std::string summary;
   const int k = fit_pseudo_labels({&real.recorded, &sources.back().extra, &real.test}, o, summary);
   say(o, "har-bench: pseudo labels: " + summary);
@@ -293,7 +293,7 @@ BenchResult run_bench(const BenchOptions& o, const TransferFn& transfer) {
   r.simulate_seconds = since(t0);
 
   // 2. windows, 3. the training sources.
-  RealWindows real = cut_windows(clips, p, r, o);
+  BenchWindows real = cut_windows(clips, p, r, o);
   r.recorded_windows = real.recorded.count();
   r.test_windows = real.test.count();
   const auto t1 = Clock::now();

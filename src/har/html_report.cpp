@@ -12,16 +12,11 @@
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
 #include "ptnet/io.hpp"
+#include "ptnet/strings.hpp"
 #include "ptnet/viz.hpp"
 
 namespace ptnet::har {
 namespace {
-
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-  return s;
-}
 
 std::string spread_cell(const std::string& source, const std::string& metric, double mean,
                         double sd) {
@@ -113,8 +108,8 @@ std::vector<std::string> write_html_report(const std::string& out_dir, const Har
   std::vector<std::string> written;
   std::ostringstream b;
   b << "<h1>ptnet HAR validation</h1>\n<p>Real recordings <code>" << html_escape(r.dataset)
-    << "</code>: train subjects " << html_escape(join(r.train_subjects)) << " (" << r.train_windows
-    << " windows), test subjects " << html_escape(join(r.test_subjects)) << " (" << r.test_windows
+    << "</code>: train subjects " << html_escape(join(r.train_subjects, ", ")) << " (" << r.train_windows
+    << " windows), test subjects " << html_escape(join(r.test_subjects, ", ")) << " (" << r.test_windows
     << " windows), stride " << r.stride << ", " << r.runs
     << " seeded runs per source. Pseudo labels: " << html_escape(pseudo_label_summary(r)) << ". Every number: <a href=\"results.json\">results.json</a>.</p>\n";
   b << "<h2>Table 3: macro F1 by training source</h2>\n" << table3_html(r);

@@ -7,18 +7,13 @@
 #include "har/har_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/har.hpp"
+#include "ptnet/strings.hpp"
 
 namespace ptnet::har {
 namespace {
 
 std::string pad(const std::string& s, std::size_t width) {
   return s.size() >= width ? s : s + std::string(width - s.size(), ' ');
-}
-
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
-  return s;
 }
 
 // (the body stage's sex_name() is not needed for this one word)
@@ -52,8 +47,8 @@ std::string pseudo_label_summary(const HarResult& r) {
 
 std::string format_table(const HarResult& r) {
   std::ostringstream o;
-  o << "HAR validation of " << r.dataset << ": train subjects " << join(r.train_subjects) << " ("
-    << r.train_windows << " windows), test subjects " << join(r.test_subjects) << " ("
+  o << "HAR validation of " << r.dataset << ": train subjects " << join(r.train_subjects, ",") << " ("
+    << r.train_windows << " windows), test subjects " << join(r.test_subjects, ",") << " ("
     << r.test_windows << " windows), stride " << r.stride << ", " << r.runs << " runs\n";
   o << "Pseudo labels: " << pseudo_label_summary(r) << "\n";
   if (!r.bandwidth_candidates.empty()) {

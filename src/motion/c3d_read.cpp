@@ -13,6 +13,7 @@
 #include <string>
 
 #include "motion/c3d_internal.hpp"
+#include "motion/markers_internal.hpp"
 #include "ptnet/error.hpp"
 #include "ptnet/io.hpp"
 #include "ptnet/strings.hpp"
@@ -23,8 +24,7 @@ namespace {
 using detail::C3dBytes;
 using detail::C3dParams;
 using detail::kC3dBlock;
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 
 // Where the data are and how many: the header's counts, checked against
 // the parameters that repeat them.

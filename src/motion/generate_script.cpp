@@ -55,15 +55,15 @@ double Script::facing() const {
 }
 
 namespace {
-constexpr double kMatHalfLength = 0.76;  // m: footprints (heel to toe tip) kept on the
-constexpr double kMatHalfWidth = 0.25;   // 1.6 m x 0.56 m mat, with a small margin
+constexpr double kFootprintHalfLength = 0.76;  // m: footprints (heel to toe tip) kept on the
+constexpr double kFootprintHalfWidth = 0.25;   // 1.6 m x 0.56 m mat, with a small margin
 
 // Shifts a flat footprint (ankle xy, heading yaw) so heel and toe tip are on the mat.
 Vector2d onto_mat(Vector2d xy, double yaw, double h) {
   const Vector2d fwd(std::cos(yaw), std::sin(yaw));
   const Vector2d heel = xy + rig::kHeelPoint.x() * h * fwd, tip = xy + rig::kToeTipPoint.x() * h * fwd;
   const Vector2d lo = heel.cwiseMin(tip), hi = heel.cwiseMax(tip);
-  const Vector2d limit(kMatHalfLength, kMatHalfWidth);
+  const Vector2d limit(kFootprintHalfLength, kFootprintHalfWidth);
   for (int k = 0; k < 2; ++k) {
     if (hi[k] > limit[k]) xy[k] -= hi[k] - limit[k];
     if (lo[k] < -limit[k]) xy[k] += -limit[k] - lo[k];

@@ -40,7 +40,6 @@ namespace {
 using V = Eigen::Vector3d;
 namespace A = anthropometry;
 
-bool has(const V& v) { return std::isfinite(v.x()); }
 V mid(const V& a, const V& b) { return 0.5 * (a + b); }
 V unit(const V& v, const V& fallback) {
   const double n = v.norm();

@@ -22,7 +22,6 @@ constexpr double kHeelMarkerM = 0.035;   // the heel marker's centre above the f
                                          // share: a straight leg's hip-heel distance + this is the hip height
 constexpr double kLongestLegQuantile = 0.95;  // the frames where the legs are straightest
 
-bool has(const V& v) { return std::isfinite(v.x()); }
 
 std::vector<V> mean_positions(const Tracks& t) {
   std::vector<V> mean;

@@ -16,7 +16,6 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-bool has(const V& v) { return std::isfinite(v.x()); }
 
 // The median distance between the two ASIS markers (file units); NaN when
 // no frame has both.

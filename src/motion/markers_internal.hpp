@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -223,6 +224,10 @@ double stature_from_legs(const Tracks& t, const TrackMap& m);
 
 // Per-frame landmark positions (world, metres, z up); NaN: absent.
 using LandmarkFrame = std::array<Eigen::Vector3d, kLandmarkCount>;
+// An absent marker's coordinate (.trc blanks, C3D's invalid points).
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A landmark or marker seen in this frame (an absent one is NaN).
+inline bool has(const Eigen::Vector3d& v) { return std::isfinite(v.x()); }
 LandmarkFrame landmarks_at(const Tracks& t, const TrackMap& m, int f);
 
 // The hip joint centres [right, left] of a frame (Harrington et al. 2007).

@@ -27,7 +27,7 @@
 namespace ptnet {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 constexpr int kMaxMarkers = 10000;
 constexpr double kMaxRateHz = 100000;
 // The Time column's rate may differ from DataRate by this fraction (times
