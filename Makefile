@@ -16,24 +16,35 @@ DEMO_OUT ?= demo
 PREFIX   ?= /usr/local
 LOPO_OUT ?= lopo
 
-.PHONY: deps build demo test check-cpu lopo install package bench asan fuzz clean
+.PHONY: deps build-deps configure build demo test check-cpu lopo install package bench asan fuzz clean
 
+# Everything (tests, benchmarks, the package) / only what building ptnet needs.
 deps:
 	@./scripts/install-deps.sh
+build-deps:
+	@./scripts/install-deps.sh build
+
+# Configures $(BUILD) (Ninja for a new one: it compiles every stage's files in
+# parallel), and again each time: a package installed since (GoogleTest for
+# the tests after `make demo`) is found then. Re-configuring takes seconds.
+configure:
+	cmake -S . -B $(BUILD) $(if $(wildcard $(BUILD)/CMakeCache.txt),,-G Ninja) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 
 $(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+	$(MAKE) configure
 
-build: deps $(BUILD)/CMakeCache.txt
+build: deps
+	@$(MAKE) --no-print-directory configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 # Only what the demo runs (ptnet and ptnet-torch), not the tests and benchmarks.
-demo: deps $(BUILD)/CMakeCache.txt
+demo: build-deps
+	@$(MAKE) --no-print-directory configure
 	cmake --build $(BUILD) -j $(JOBS) --target ptnet
 	./$(BUILD)/ptnet demo --out $(DEMO_OUT) --force
 
 test: build
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS)
 
 # scripts/check-numerics.sh: one line per instruction set x thread count.
 check-cpu: build
