@@ -24,7 +24,7 @@ torch::Tensor with_margin(const torch::Tensor& frames, int margin);
 // the 32 MB from which glibc gives a block its own mmap (the largest
 // threshold it uses, and keep_freed_memory's, ptnet/memory.hpp): above it
 // each tensor is faulted in page by page on every call. Measured, one
-// thread: the paper's network 0.25-0.3x as fast in one chunk of 64 (36.7 MB
+// thread: the paper's network 0.2-0.3x as fast in one chunk of 64 (36.7 MB
 // tensors) as in two of 32; at or below the budget the chunk size made
 // little difference (docs/model.md "Speed").
 constexpr int64_t kInferenceChunkBytes = int64_t(20) << 20;
