@@ -195,6 +195,10 @@ TEST(ModelInference, LargeBatchesRunInChunksWithTheSameResult) {
   for (Arch arch : {Arch::skip, Arch::frame}) {
     ModelConfig c = small(arch);
     c.channels[0] = 64;  // a wide first block: 19 windows make two chunks
+    // No contact head: its output jumps at a logit of 0, and with 64 random
+    // channels the logits' rounding (~1e-3) flips a cell now and then under
+    // another instruction set (seen with ATEN_CPU_CAPABILITY=default).
+    c.contact = false;
     ASSERT_EQ(chunk_windows(c, 19, kInferenceChunkBytes), 10) << arch_name(arch);
     PressureTransferNet net = random_net(c);
     InferenceNet fast(net);
