@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/model_internal.hpp"
 #include "ptnet/model.hpp"
+#include "ptnet/train.hpp"
 
 using namespace ptnet;
 
@@ -191,14 +193,55 @@ TEST(ModelInference, NeedsEvalModeAndRightShapes) {
 
 TEST(ModelInference, LargeBatchesRunInChunksWithTheSameResult) {
   for (Arch arch : {Arch::skip, Arch::frame}) {
-    const ModelConfig c = small(arch);
+    ModelConfig c = small(arch);
+    c.channels[0] = 64;  // a wide first block: 19 windows make two chunks
+    // No contact head: its output jumps at a logit of 0, and with 64 random
+    // channels the logits' rounding (~1e-3) flips a cell now and then under
+    // another instruction set (seen with ATEN_CPU_CAPABILITY=default).
+    c.contact = false;
+    ASSERT_EQ(chunk_windows(c, 19, kInferenceChunkBytes), 10) << arch_name(arch);
     PressureTransferNet net = random_net(c);
     InferenceNet fast(net);
-    auto x = torch::rand({19, c.window + 2 * input_margin(c), c.rows, c.cols});  // 8 + 8 + 3 windows
+    auto x = torch::rand({19, c.window + 2 * input_margin(c), c.rows, c.cols});  // 10 + 9 windows
     auto a = torch::randn({1, 3}).expand({19, 3});
     auto mixed = torch::randn({19, 3});
     torch::NoGradGuard no_grad;
     expect_close(net, x, net->forward(x, a, mixed), fast.forward(x, a, mixed), std::string(arch_name(arch)) + " batch 19");
     expect_close(net, x, net->forward(x, a, a), fast.forward(x, a, a), std::string(arch_name(arch)) + " batch 19, one pair");
   }
+}
+
+// A chunk's widest activation stays below the budget, and the chunks of a
+// batch are equal: the paper's network runs 64 windows as two chunks of 32
+// (36.7 MB in one), the 16/32/64 network and the fast preset's frame
+// network in one.
+TEST(ModelInference, ChunksKeepEveryTensorBelowTheBudget) {
+  EXPECT_EQ(chunk_windows(ModelConfig::paper(), 64, kInferenceChunkBytes), 32);
+  EXPECT_EQ(chunk_windows(ModelConfig::paper(), 73, kInferenceChunkBytes), 25);  // 36 fit: 25 + 25 + 23
+  EXPECT_EQ(chunk_windows(ModelConfig::paper(), 1, kInferenceChunkBytes), 1);
+  EXPECT_EQ(chunk_windows(ModelConfig::fast(), 64, kInferenceChunkBytes), 64);
+  EXPECT_EQ(chunk_windows(TrainOptions::from_preset("fast").model, 64, kInferenceChunkBytes), 64);
+  EXPECT_EQ(chunk_windows(TrainOptions::from_preset("fast").model, 1000, kInferenceChunkBytes), 143);  // 146 fit: 7 chunks
+  ModelConfig skip = ModelConfig::paper();
+  skip.arch = Arch::skip;  // the concatenation before the last layer: 128 channels at full resolution
+  EXPECT_EQ(chunk_windows(skip, 64, kInferenceChunkBytes), 16);
+  EXPECT_EQ(chunk_windows(ModelConfig::paper(), 64, 1), 1);  // a window larger than the budget: one at a time
+}
+
+// LibTorch reads a one-channel tensor whose strides are NCHW-contiguous as
+// NCHW, although it is channels-last contiguous too (contiguous(ChannelsLast)
+// keeps such strides); a convolution with such a kernel wrote NCHW, and the
+// frame network's next layers ran on mixed layouts (its first pooling 5x
+// slower). in_format gives the kernel channels-last strides.
+TEST(ModelInference, OneChannelKernelsKeepTheChannelsLastLayout) {
+  const auto cl = at::MemoryFormat::ChannelsLast;
+  auto w = torch::randn({16, 1, 3, 3});
+  auto x = torch::rand({16, 1, 80, 28}).contiguous(cl);
+  torch::InferenceMode guard;
+  ASSERT_FALSE(torch::conv2d(x, w.contiguous(cl), {}, 1, 1).is_contiguous(cl));  // the trap
+  auto v = in_format(w, cl);
+  EXPECT_TRUE(torch::equal(v, w));
+  EXPECT_EQ(v.suggest_memory_format(), cl);
+  EXPECT_TRUE(torch::conv2d(x, v, {}, 1, 1).is_contiguous(cl));
+  EXPECT_TRUE(torch::conv2d(x.narrow(0, 0, 1), v, {}, 1, 1).is_contiguous(cl));  // batch 1 (no oneDNN)
 }

@@ -9,7 +9,8 @@
 namespace ptnet {
 
 // Below this size an allocation comes from the heap, not from its own
-// mmap: a tensor of a chunk of 8 paper-width windows is 4.6 MB, a
+// mmap: a tensor of a chunk of 32 paper-width windows is 18 MB (the
+// InferenceNet keeps its chunks below 20 MB, chunk_windows), a
 // simulated sequence a few MB.
 constexpr int kMmapBelowBytes = 32 << 20;  // glibc's largest (HEAP_MAX_SIZE / 2)
 // Free memory at the top of a heap is handed back to the kernel only

@@ -13,8 +13,9 @@
 // - Arch::frame: the 1x1 laterals run before the nearest upsampling (they
 //   commute; 4x fewer multiply-adds);
 // - window archs: each ConvTranspose2d runs as the equivalent Conv2d;
-// - activations in channels-last layout, batches in chunks of 8 windows
-//   (both measured faster, bench_model);
+// - activations in channels-last layout (measured faster, bench_model), the
+//   single-channel kernels too (in_format); batches in chunks whose widest
+//   activation stays below kInferenceChunkBytes (chunk_windows);
 // - autograd bookkeeping (torch::InferenceMode).
 #include <algorithm>
 #include <cmath>
@@ -40,10 +41,6 @@ struct Named {
   bool has(const std::string& name) const { return params.contains(name) || buffers.contains(name); }
 };
 
-// Windows per forward pass inside forward(): a larger batch is cut into
-// chunks of this many, whose activations stay in the cache (bench_model
-// BM_InferenceFolded: batch 8 was the fastest per window at every width).
-constexpr int64_t kChunkWindows = 8;
 constexpr double kBatchNormEps = 1e-5;  // torch::nn::BatchNorm2d's default, used by every norm of the net
 
 // Per-channel scale and shift of an eval-mode BatchNorm named `bn` ([C] each).
@@ -83,6 +80,28 @@ torch::Tensor frame_outputs(const torch::Tensor& x, const torch::Tensor& out, bo
 
 }  // namespace
 
+// `t` [N,C,H,W] copied into `format` with that format's strides even where
+// they are ambiguous: with one channel ([16, 1, 3, 3], the frame network's
+// first kernel), the NCHW strides are also channels-last contiguous, so
+// contiguous(ChannelsLast) keeps them and LibTorch then reads the tensor as
+// NCHW; a convolution with such a weight (and such an input) writes NCHW, and
+// every layer after it pays for the mixed layouts (the frame network's first
+// pooling 5x slower; measured, docs/model.md "Speed").
+torch::Tensor in_format(const torch::Tensor& t, at::MemoryFormat format) {
+  return torch::empty(t.sizes(), t.options().memory_format(format)).copy_(t);
+}
+
+int64_t chunk_windows(const ModelConfig& c, int64_t n, int64_t budget_bytes) {
+  // Channels of the widest activation at full resolution, per window.
+  const int64_t c1 = c.channels[0];
+  const int64_t widest = c.arch == Arch::frame ? int64_t(c.window) * std::max<int64_t>(1 + 2 * c.context, c1)
+                                               : std::max<int64_t>(c.window, has_skips(c.arch) ? 2 * c1 : c1);
+  const int64_t bytes = widest * c.rows * c.cols * int64_t(sizeof(float));
+  const int64_t per_chunk = std::max<int64_t>(1, budget_bytes / bytes);
+  const int64_t chunks = (n + per_chunk - 1) / per_chunk;
+  return chunks <= 1 ? n : (n + chunks - 1) / chunks;
+}
+
 InferenceNet::InferenceNet(const PressureTransferNet& net, MemoryLayout layout) : config_(net->config()) {
   TORCH_CHECK(!net->is_training(), "InferenceNet: the network must be in eval mode");
   if (layout == MemoryLayout::automatic) layout = MemoryLayout::channels_last;  // measured: BM_InferenceLayout
@@ -96,9 +115,9 @@ InferenceNet::InferenceNet(const PressureTransferNet& net, MemoryLayout layout) 
     // A stride-1 ConvTranspose2d (padding 1, 3x3) is the Conv2d with the
     // kernel's in/out swapped and flipped; Conv2d measured 1.3x faster.
     if (transposed) w = w.transpose(0, 1).flip({2, 3});
-    if (bn.empty()) return Layer{w.contiguous(format_), b};
+    if (bn.empty()) return Layer{in_format(w, format_), b};
     auto [scale, shift] = norm_affine(n, bn);
-    return Layer{(w * scale.view({-1, 1, 1, 1})).contiguous(format_), b * scale + shift};
+    return Layer{in_format(w * scale.view({-1, 1, 1, 1}), format_), b * scale + shift};
   };
   if (config_.arch == Arch::frame) {
     for (int i = 0; i < 6; ++i) {
@@ -134,10 +153,11 @@ torch::Tensor InferenceNet::forward(const torch::Tensor& x, const torch::Tensor&
     return forward_window(xs.contiguous(format_), ss, ts).contiguous();
   };
   const auto n = x.size(0);
-  if (n <= kChunkWindows) return run(x, source, target);
+  const auto chunk = chunk_windows(c, n, kInferenceChunkBytes);
+  if (n <= chunk) return run(x, source, target);
   std::vector<torch::Tensor> parts;
-  for (int64_t i = 0; i < n; i += kChunkWindows) {
-    const auto m = std::min<int64_t>(kChunkWindows, n - i);
+  for (int64_t i = 0; i < n; i += chunk) {
+    const auto m = std::min<int64_t>(chunk, n - i);
     parts.push_back(run(x.narrow(0, i, m), source.narrow(0, i, m), target.narrow(0, i, m)));
   }
   return torch::cat(parts);
@@ -206,7 +226,7 @@ torch::Tensor InferenceNet::forward_frame(const torch::Tensor& x, const torch::T
         const auto width = layers_[std::size_t(i)].weight.size(0);
         auto g = 1 + f.narrow(0, offset, width);
         auto shift = f.narrow(0, offset + width, width);
-        folded_.push_back({(layers_[std::size_t(i)].weight * g.view({-1, 1, 1, 1})).contiguous(format_),
+        folded_.push_back({in_format(layers_[std::size_t(i)].weight * g.view({-1, 1, 1, 1}), format_),
                            layers_[std::size_t(i)].bias * g + shift});
         offset += int(2 * width);
       }
