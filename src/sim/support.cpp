@@ -73,6 +73,7 @@ FloorSupport floor_support(const Motion& motion, const Body& body, const MotionP
   FloorSupport out;
   out.contact.assign(std::size_t(T), false);
   out.frames.resize(std::size_t(T));
+  const SoleRows rows(body.sole());
   for (int t = 0; t < T; ++t) {
     Pose p = motion.frames[std::size_t(t)];
     lift_feet(p, place.foot_lift);
@@ -81,7 +82,7 @@ FloorSupport floor_support(const Motion& motion, const Body& body, const MotionP
     SupportFrame& f = out.frames[std::size_t(t)];
     double lowest = 1e300;
     for (int s = 0; s < 2; ++s) {
-      const double z = foot_lowest_z(body.sole(), s ? pb.right_foot : pb.left_foot) - floor;
+      const double z = foot_lowest_z(body.sole(), rows, s ? pb.right_foot : pb.left_foot) - floor;
       f.foot_down[std::size_t(s)] = z < band_m;
       const auto ends = foot_ends(p, s);
       f.heel[std::size_t(s)] = ends[0].head<2>(), f.tip[std::size_t(s)] = ends[1].head<2>();

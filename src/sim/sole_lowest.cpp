@@ -1,0 +1,116 @@
+// The lowest point of a posed sole patch: the reference scan of its whole
+// height table (patch_lowest_z(sole, patch)) and the same value found by
+// scanning only the table rows that can hold it (SoleRows).
+//
+// Dimension legend: nu x nv the sole's height table (rows along the foot, u;
+// columns across it, v).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sim_internal.hpp"
+
+namespace ptnet::detail {
+namespace {
+
+// The sole coordinate u of table row i, and v of column j.
+double row_u(const SoleSurface& sole, int i) { return double(i) / (sole.nu - 1); }
+double col_v(const SoleSurface& sole, int j) { return sole.v_min + (sole.v_max - sole.v_min) * j / (sole.nv - 1); }
+
+// The height of the patch's plane at row u (m), before the sideways and
+// the table's terms.
+double along_z(const SoleSurface& sole, const SolePatch& p, double u) {
+  return p.origin.z() + p.forward.z() * ((u - p.u_origin) * sole.length_m);
+}
+
+// `lowest` lowered to each foot cell of columns [j0, j1] of row i, in
+// column order (the reference's operations, in its order).
+void scan_row(const SoleSurface& sole, const SolePatch& p, int i, int j0, int j1, double& lowest) {
+  const double along = along_z(sole, p, row_u(sole, i));
+  for (int j = j0; j <= j1; ++j) {
+    const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
+    if (!(h < SoleSurface::kOutside)) continue;
+    const double v = col_v(sole, j);
+    lowest = std::min(lowest, along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h);
+  }
+}
+
+bool patch_row(const SolePatch& p, double u) { return !(u < p.u_begin || u > p.u_end); }
+
+}  // namespace
+
+double patch_lowest_z(const SoleSurface& sole, const SolePatch& p) {
+  double lowest = 1e300;
+  for (int i = 0; i < sole.nu; ++i)
+    if (patch_row(p, row_u(sole, i))) scan_row(sole, p, i, 0, sole.nv - 1, lowest);
+  return lowest;
+}
+
+double foot_lowest_z(const SoleSurface& sole, const std::array<SolePatch, 2>& foot) {
+  return std::min(patch_lowest_z(sole, foot[0]), patch_lowest_z(sole, foot[1]));
+}
+
+SoleRows::SoleRows(const SoleSurface& sole)
+    : first(std::size_t(std::max(sole.nu, 0)), sole.nv),
+      last(std::size_t(std::max(sole.nu, 0)), -1),
+      h_lo(first.size(), std::numeric_limits<double>::infinity()),
+      h_hi(first.size(), -std::numeric_limits<double>::infinity()) {
+  for (int i = 0; i < sole.nu; ++i)
+    for (int j = 0; j < sole.nv; ++j) {
+      const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
+      if (!(h < SoleSurface::kOutside)) continue;
+      first[std::size_t(i)] = std::min(first[std::size_t(i)], j), last[std::size_t(i)] = j;
+      h_lo[std::size_t(i)] = std::min(h_lo[std::size_t(i)], double(h));
+      h_hi[std::size_t(i)] = std::max(h_hi[std::size_t(i)], double(h));
+      h_abs = std::max(h_abs, std::abs(double(h)));
+    }
+}
+
+namespace {
+
+// A lower bound (m) of every value scan_row computes on row i (which holds
+// foot cells), short of the rounding of either by at most `slack`.
+double row_bound(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, int i) {
+  const std::size_t r = std::size_t(i);
+  const double side = p.left.z() * p.medial_sign * sole.width_m, up = p.up.z();
+  return along_z(sole, p, row_u(sole, i)) + std::min(side * col_v(sole, rows.first[r]), side * col_v(sole, rows.last[r])) +
+         std::min(up * rows.h_lo[r], up * rows.h_hi[r]);
+}
+
+}  // namespace
+
+// Every value is a linear function of the cell's (u, v, h) plus rounding;
+// a row whose bound lies above a value already found (by more than all the
+// rounding there is) holds no lower value, nor an equal one. The rows left
+// are scanned in the reference's order, so the result is its value, bit for
+// bit (the first of equal values, as the reference keeps).
+double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p) {
+  const double side = std::abs(p.left.z() * sole.width_m) * std::max(std::abs(sole.v_min), std::abs(sole.v_max));
+  const double scale = 1 + std::abs(p.origin.z()) + std::abs(p.forward.z()) * sole.length_m * (1 + std::abs(p.u_origin)) +
+                       side + std::abs(p.up.z()) * rows.h_abs;
+  if (!std::isfinite(scale) || int(rows.first.size()) != sole.nu) return patch_lowest_z(sole, p);
+  const double slack = 1e-12 * scale;  // far above the few ulps of `scale` either value may be off by
+  // A value to prune against: the lowest of the row with the lowest bound.
+  int seed = -1;
+  double seed_bound = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < sole.nu; ++i)
+    if (rows.first[std::size_t(i)] <= rows.last[std::size_t(i)] && patch_row(p, row_u(sole, i))) {
+      const double b = row_bound(sole, rows, p, i);
+      if (seed < 0 || b < seed_bound) seed = i, seed_bound = b;
+    }
+  if (seed < 0) return 1e300;
+  double cut = 1e300;
+  scan_row(sole, p, seed, rows.first[std::size_t(seed)], rows.last[std::size_t(seed)], cut);
+  double lowest = 1e300;
+  for (int i = 0; i < sole.nu; ++i)
+    if (rows.first[std::size_t(i)] <= rows.last[std::size_t(i)] && patch_row(p, row_u(sole, i)) &&
+        !(row_bound(sole, rows, p, i) - slack > std::min(cut, lowest)))
+      scan_row(sole, p, i, rows.first[std::size_t(i)], rows.last[std::size_t(i)], lowest);
+  return lowest;
+}
+
+double foot_lowest_z(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot) {
+  return std::min(patch_lowest_z(sole, rows, foot[0]), patch_lowest_z(sole, rows, foot[1]));
+}
+
+}  // namespace ptnet::detail
