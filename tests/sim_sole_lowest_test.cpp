@@ -1,6 +1,7 @@
 // The lowest point of a posed sole (src/sim/sole_lowest.cpp): the pruned
 // scan through SoleRows returns the reference's value bit for bit (the
-// floor, the feet's lifts and whether a foot is on the floor come from it)
+// feet's lifts come from it), and foot_below decides as the reference's
+// value does whether a foot is within the band over the floor
 // for feet in every orientation, on short, tall, light and heavy bodies,
 // in the frames of a walk, with ties (a level sole), and with coordinates
 // that are not finite.
@@ -24,13 +25,25 @@ using detail::SoleRows;
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// Both patches of both feet of `pb`, each through both paths.
+// Both patches of both feet of `pb`, each through both paths; and whether
+// each foot is below a band over floors that put its lowest point on
+// either side of the band's edge, by far and by an ulp.
 void expect_same(const Body& body, const SoleRows& rows, const PosedBody& pb, const char* what) {
-  for (const auto* foot : {&pb.left_foot, &pb.right_foot})
+  const SoleSurface& sole = body.sole();
+  for (const auto* foot : {&pb.left_foot, &pb.right_foot}) {
     for (const SolePatch& p : *foot) {
-      const double ref = detail::patch_lowest_z(body.sole(), p), fast = detail::patch_lowest_z(body.sole(), rows, p);
+      const double ref = detail::patch_lowest_z(sole, p), fast = detail::patch_lowest_z(sole, rows, p);
       ASSERT_TRUE(same_bits(ref, fast)) << what << ": reference " << ref << ", pruned " << fast;
     }
+    const double lowest = detail::foot_lowest_z(sole, *foot);
+    ASSERT_TRUE(same_bits(lowest, detail::foot_lowest_z(sole, rows, *foot))) << what;
+    constexpr double kBand = 0.01;
+    const double edge = lowest - kBand;  // the floor that puts the lowest point at the band's edge
+    for (double floor : {0.0, -0.3, 0.3, edge, std::nextafter(edge, 1.0), std::nextafter(edge, -1.0), edge + 1e-9,
+                         edge - 1e-9, edge + 0.004, edge - 0.004})
+      ASSERT_EQ(detail::foot_below(sole, rows, *foot, floor, kBand), lowest - floor < kBand)
+          << what << ": lowest " << lowest << ", floor " << floor;
+  }
 }
 
 // A patch turned by `turn` about its origin, then moved by `shift`.

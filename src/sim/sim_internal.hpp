@@ -58,11 +58,16 @@ struct SoleRows {
   explicit SoleRows(const SoleSurface& sole);
   std::vector<int> first, last;  // [nu] the first and last column inside the foot (first > last: none)
   std::vector<double> h_lo, h_hi;  // [nu] the lowest and highest of the row's heights (m)
+  std::vector<double> v_first, v_last;  // [nu] the sole coordinate v of the first and last column
   double h_abs = 0;                // the largest |height| of the table (m)
 };
 // The same values as above, bit for bit, through `rows` (of `sole`).
 double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SolePatch& patch);
 double foot_lowest_z(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot);
+// Whether foot_lowest_z(sole, foot) - floor < band, as that computes it,
+// scanning only the rows that can decide it: a foot on the floor.
+bool foot_below(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot, double floor,
+                double band);
 // Lowers each foot's ankle and toe joints by MotionPlacement::foot_lift [left, right] (m).
 void lift_feet(Pose& pose, const std::array<double, 2>& lift);
 // MotionPlacement::foot_lift of a motion (pitch corrected) on `body` over

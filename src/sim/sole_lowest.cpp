@@ -54,7 +54,9 @@ SoleRows::SoleRows(const SoleSurface& sole)
     : first(std::size_t(std::max(sole.nu, 0)), sole.nv),
       last(std::size_t(std::max(sole.nu, 0)), -1),
       h_lo(first.size(), std::numeric_limits<double>::infinity()),
-      h_hi(first.size(), -std::numeric_limits<double>::infinity()) {
+      h_hi(first.size(), -std::numeric_limits<double>::infinity()),
+      v_first(first.size(), 0.0),
+      v_last(first.size(), 0.0) {
   for (int i = 0; i < sole.nu; ++i)
     for (int j = 0; j < sole.nv; ++j) {
       const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
@@ -63,18 +65,42 @@ SoleRows::SoleRows(const SoleSurface& sole)
       h_lo[std::size_t(i)] = std::min(h_lo[std::size_t(i)], double(h));
       h_hi[std::size_t(i)] = std::max(h_hi[std::size_t(i)], double(h));
       h_abs = std::max(h_abs, std::abs(double(h)));
+      v_first[std::size_t(i)] = col_v(sole, first[std::size_t(i)]), v_last[std::size_t(i)] = col_v(sole, j);
     }
 }
 
 namespace {
+
+bool has_cells(const SoleRows& rows, int i) { return rows.first[std::size_t(i)] <= rows.last[std::size_t(i)]; }
 
 // A lower bound (m) of every value scan_row computes on row i (which holds
 // foot cells), short of the rounding of either by at most `slack`.
 double row_bound(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, int i) {
   const std::size_t r = std::size_t(i);
   const double side = p.left.z() * p.medial_sign * sole.width_m, up = p.up.z();
-  return along_z(sole, p, row_u(sole, i)) + std::min(side * col_v(sole, rows.first[r]), side * col_v(sole, rows.last[r])) +
+  return along_z(sole, p, row_u(sole, i)) + std::min(side * rows.v_first[r], side * rows.v_last[r]) +
          std::min(up * rows.h_lo[r], up * rows.h_hi[r]);
+}
+
+// A bound of the magnitudes the values of patch p add up (m): the
+// rounding of a value, or of a row's bound, is a few ulps of it. Not
+// finite when the patch is not.
+double bound_scale(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p) {
+  const double side = std::abs(p.left.z() * sole.width_m) * std::max(std::abs(sole.v_min), std::abs(sole.v_max));
+  return 1 + std::abs(p.origin.z()) + std::abs(p.forward.z()) * sole.length_m * (1 + std::abs(p.u_origin)) + side +
+         std::abs(p.up.z()) * rows.h_abs;
+}
+
+// The row of patch p with foot cells and the lowest bound (-1: none).
+int lowest_bound_row(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p) {
+  int seed = -1;
+  double lowest = 0;
+  for (int i = 0; i < sole.nu; ++i)
+    if (has_cells(rows, i) && patch_row(p, row_u(sole, i))) {
+      const double b = row_bound(sole, rows, p, i);
+      if (seed < 0 || b < lowest) seed = i, lowest = b;
+    }
+  return seed;
 }
 
 }  // namespace
@@ -85,25 +111,16 @@ double row_bound(const SoleSurface& sole, const SoleRows& rows, const SolePatch&
 // are scanned in the reference's order, so the result is its value, bit for
 // bit (the first of equal values, as the reference keeps).
 double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p) {
-  const double side = std::abs(p.left.z() * sole.width_m) * std::max(std::abs(sole.v_min), std::abs(sole.v_max));
-  const double scale = 1 + std::abs(p.origin.z()) + std::abs(p.forward.z()) * sole.length_m * (1 + std::abs(p.u_origin)) +
-                       side + std::abs(p.up.z()) * rows.h_abs;
-  if (!std::isfinite(scale) || int(rows.first.size()) != sole.nu) return patch_lowest_z(sole, p);
-  const double slack = 1e-12 * scale;  // far above the few ulps of `scale` either value may be off by
+  const double slack = 1e-12 * bound_scale(sole, rows, p);
+  if (!std::isfinite(slack) || int(rows.first.size()) != sole.nu) return patch_lowest_z(sole, p);
   // A value to prune against: the lowest of the row with the lowest bound.
-  int seed = -1;
-  double seed_bound = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < sole.nu; ++i)
-    if (rows.first[std::size_t(i)] <= rows.last[std::size_t(i)] && patch_row(p, row_u(sole, i))) {
-      const double b = row_bound(sole, rows, p, i);
-      if (seed < 0 || b < seed_bound) seed = i, seed_bound = b;
-    }
+  const int seed = lowest_bound_row(sole, rows, p);
   if (seed < 0) return 1e300;
   double cut = 1e300;
   scan_row(sole, p, seed, rows.first[std::size_t(seed)], rows.last[std::size_t(seed)], cut);
   double lowest = 1e300;
   for (int i = 0; i < sole.nu; ++i)
-    if (rows.first[std::size_t(i)] <= rows.last[std::size_t(i)] && patch_row(p, row_u(sole, i)) &&
+    if (has_cells(rows, i) && patch_row(p, row_u(sole, i)) &&
         !(row_bound(sole, rows, p, i) - slack > std::min(cut, lowest)))
       scan_row(sole, p, i, rows.first[std::size_t(i)], rows.last[std::size_t(i)], lowest);
   return lowest;
@@ -111,6 +128,49 @@ double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SoleP
 
 double foot_lowest_z(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot) {
   return std::min(patch_lowest_z(sole, rows, foot[0]), patch_lowest_z(sole, rows, foot[1]));
+}
+
+namespace {
+
+// Whether fl(v - floor) < band for a value v of row i (a foot cell), in
+// the reference's order.
+bool row_below(const SoleSurface& sole, const SolePatch& p, int i, int j0, int j1, double floor, double band) {
+  const double along = along_z(sole, p, row_u(sole, i));
+  for (int j = j0; j <= j1; ++j) {
+    const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
+    if (!(h < SoleSurface::kOutside)) continue;
+    const double v = col_v(sole, j);
+    if (along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h - floor < band) return true;
+  }
+  return false;
+}
+
+// Whether patch_lowest_z(sole, p) - floor < band: whether some cell's value
+// v has fl(v - floor) < band (subtracting is monotone: the lowest value
+// passes exactly when some value does). Rows whose bound, less the
+// rounding, already fails are not scanned; the row with the lowest bound is
+// scanned first.
+bool patch_below(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, double floor, double band) {
+  const double slack = 1e-12 * bound_scale(sole, rows, p);
+  if (!std::isfinite(slack + floor + band) || int(rows.first.size()) != sole.nu)
+    return patch_lowest_z(sole, p) - floor < band;
+  const auto passes = [&](int i) { return !(row_bound(sole, rows, p, i) - slack - floor >= band); };
+  const auto scan = [&](int i) {
+    return row_below(sole, p, i, rows.first[std::size_t(i)], rows.last[std::size_t(i)], floor, band);
+  };
+  const int seed = lowest_bound_row(sole, rows, p);
+  if (seed < 0 || !passes(seed)) return false;
+  if (scan(seed)) return true;
+  for (int i = 0; i < sole.nu; ++i)
+    if (i != seed && has_cells(rows, i) && patch_row(p, row_u(sole, i)) && passes(i) && scan(i)) return true;
+  return false;
+}
+
+}  // namespace
+
+bool foot_below(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot, double floor,
+                double band) {
+  return patch_below(sole, rows, foot[0], floor, band) || patch_below(sole, rows, foot[1], floor, band);
 }
 
 }  // namespace ptnet::detail
