@@ -75,8 +75,14 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
   const Motion motion = detail::pitch_corrected(input, place.foot_pitch);
   const int T = motion.size();
   const MatSpec& mat = options.mat;
-  std::vector<PressureSequence> reads;  // all zero (Foundation::distribute writes only the contact)
-  for (std::size_t k = 0; k < seeds.size(); ++k) reads.emplace_back(mat, T, motion.fps);
+  // Each reading grows by one zeroed frame at a time (Foundation::distribute
+  // writes only the contact) into memory reserved for all T: a frame is
+  // zeroed in the cache just before it is written, not all at once.
+  std::vector<PressureSequence> reads;
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    reads.emplace_back(mat, 0, motion.fps);
+    reads.back().kpa.reserve(std::size_t(T) * mat.cells());
+  }
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
   const detail::FloorSupport support = detail::floor_support(motion, body, place, options.compliance_m);
@@ -99,6 +105,7 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
       local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor[std::size_t(t)]);
     }
     detail::lift_feet(local, place.foot_lift);
+    for (PressureSequence& r : reads) r.kpa.resize(std::size_t(t + 1) * mat.cells());
     float* frame = reads[0].frame(t);
     raster.rasterise(body, pose_body(body, local), trace != nullptr);
     const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
