@@ -32,15 +32,17 @@ void expect_same(const Body& body, const SoleRows& rows, const PosedBody& pb, co
   const SoleSurface& sole = body.sole();
   for (const auto* foot : {&pb.left_foot, &pb.right_foot}) {
     for (const SolePatch& p : *foot) {
-      const double ref = detail::patch_lowest_z(sole, p), fast = detail::patch_lowest_z(sole, rows, p);
+      const double ref = detail::patch_lowest_z(sole, p),
+                   fast = detail::patch_lowest_z(sole, rows, p);
       ASSERT_TRUE(same_bits(ref, fast)) << what << ": reference " << ref << ", pruned " << fast;
     }
     const double lowest = detail::foot_lowest_z(sole, *foot);
     ASSERT_TRUE(same_bits(lowest, detail::foot_lowest_z(sole, rows, *foot))) << what;
     constexpr double kBand = 0.01;
     const double edge = lowest - kBand;  // the floor that puts the lowest point at the band's edge
-    for (double floor : {0.0, -0.3, 0.3, edge, std::nextafter(edge, 1.0), std::nextafter(edge, -1.0), edge + 1e-9,
-                         edge - 1e-9, edge + 0.004, edge - 0.004})
+    for (double floor :
+         {0.0, -0.3, 0.3, edge, std::nextafter(edge, 1.0), std::nextafter(edge, -1.0), edge + 1e-9,
+          edge - 1e-9, edge + 0.004, edge - 0.004})
       ASSERT_EQ(detail::foot_below(sole, rows, *foot, floor, kBand), lowest - floor < kBand)
           << what << ": lowest " << lowest << ", floor " << floor;
   }
@@ -55,7 +57,9 @@ SolePatch moved(SolePatch p, const Eigen::Matrix3d& turn, const Eigen::Vector3d&
 
 std::vector<Body> bodies() {
   std::vector<Body> out;
-  for (auto [sex, h, w] : {std::tuple{Sex::female, 140.0, 40.0}, {Sex::male, 205.0, 130.0}, {Sex::male, 175.0, 75.0}}) {
+  for (auto [sex, h, w] : {std::tuple{Sex::female, 140.0, 40.0},
+                           {Sex::male, 205.0, 130.0},
+                           {Sex::male, 175.0, 75.0}}) {
     BodySpec s;
     s.id = "b";
     s.sex = sex, s.height_cm = h, s.weight_kg = w;
@@ -105,13 +109,14 @@ TEST(SoleLowest, TiesAndValuesThatAreNotFinite) {
   // A level sole: whole rows of equal heights, the first of them kept.
   for (auto* foot : {&pb.left_foot, &pb.right_foot})
     for (SolePatch& p : *foot)
-      p.forward = Eigen::Vector3d(1, 0, 0), p.left = Eigen::Vector3d(0, 1, 0), p.up = Eigen::Vector3d(0, 0, 1),
-      p.origin.z() = 0;
+      p.forward = Eigen::Vector3d(1, 0, 0), p.left = Eigen::Vector3d(0, 1, 0),
+      p.up = Eigen::Vector3d(0, 0, 1), p.origin.z() = 0;
   expect_same(body, rows, pb, "level");
   pb.left_foot[0].origin.z() = -0.0;
   expect_same(body, rows, pb, "level at -0");
   // Not finite: the reference's own scan, whatever it makes of them.
-  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e308}) {
+  for (double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e308}) {
     PosedBody q = pb;
     q.left_foot[0].origin.z() = bad;
     q.right_foot[1].up.z() = bad;
@@ -134,7 +139,8 @@ TEST(SoleLowest, RowsHoldTheFootCells) {
     for (int j = 0; j < sole.nv; ++j) {
       const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
       const bool inside = h < SoleSurface::kOutside;
-      if (j < rows.first[std::size_t(i)] || j > rows.last[std::size_t(i)]) EXPECT_FALSE(inside) << i << ", " << j;
+      if (j < rows.first[std::size_t(i)] || j > rows.last[std::size_t(i)])
+        EXPECT_FALSE(inside) << i << ", " << j;
       if (inside) {
         EXPECT_GE(h, rows.h_lo[std::size_t(i)]);
         EXPECT_LE(h, rows.h_hi[std::size_t(i)]);

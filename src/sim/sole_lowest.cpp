@@ -15,7 +15,9 @@ namespace {
 
 // The sole coordinate u of table row i, and v of column j.
 double row_u(const SoleSurface& sole, int i) { return double(i) / (sole.nu - 1); }
-double col_v(const SoleSurface& sole, int j) { return sole.v_min + (sole.v_max - sole.v_min) * j / (sole.nv - 1); }
+double col_v(const SoleSurface& sole, int j) {
+  return sole.v_min + (sole.v_max - sole.v_min) * j / (sole.nv - 1);
+}
 
 // The height of the patch's plane at row u (m), before the sideways and
 // the table's terms.
@@ -31,7 +33,8 @@ void scan_row(const SoleSurface& sole, const SolePatch& p, int i, int j0, int j1
     const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
     if (!(h < SoleSurface::kOutside)) continue;
     const double v = col_v(sole, j);
-    lowest = std::min(lowest, along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h);
+    lowest =
+        std::min(lowest, along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h);
   }
 }
 
@@ -65,20 +68,24 @@ SoleRows::SoleRows(const SoleSurface& sole)
       h_lo[std::size_t(i)] = std::min(h_lo[std::size_t(i)], double(h));
       h_hi[std::size_t(i)] = std::max(h_hi[std::size_t(i)], double(h));
       h_abs = std::max(h_abs, std::abs(double(h)));
-      v_first[std::size_t(i)] = col_v(sole, first[std::size_t(i)]), v_last[std::size_t(i)] = col_v(sole, j);
+      v_first[std::size_t(i)] = col_v(sole, first[std::size_t(i)]),
+      v_last[std::size_t(i)] = col_v(sole, j);
     }
 }
 
 namespace {
 
-bool has_cells(const SoleRows& rows, int i) { return rows.first[std::size_t(i)] <= rows.last[std::size_t(i)]; }
+bool has_cells(const SoleRows& rows, int i) {
+  return rows.first[std::size_t(i)] <= rows.last[std::size_t(i)];
+}
 
 // A lower bound (m) of every value scan_row computes on row i (which holds
 // foot cells), short of the rounding of either by at most `slack`.
 double row_bound(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, int i) {
   const std::size_t r = std::size_t(i);
   const double side = p.left.z() * p.medial_sign * sole.width_m, up = p.up.z();
-  return along_z(sole, p, row_u(sole, i)) + std::min(side * rows.v_first[r], side * rows.v_last[r]) +
+  return along_z(sole, p, row_u(sole, i)) +
+         std::min(side * rows.v_first[r], side * rows.v_last[r]) +
          std::min(up * rows.h_lo[r], up * rows.h_hi[r]);
 }
 
@@ -86,8 +93,10 @@ double row_bound(const SoleSurface& sole, const SoleRows& rows, const SolePatch&
 // rounding of a value, or of a row's bound, is a few ulps of it. Not
 // finite when the patch is not.
 double bound_scale(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p) {
-  const double side = std::abs(p.left.z() * sole.width_m) * std::max(std::abs(sole.v_min), std::abs(sole.v_max));
-  return 1 + std::abs(p.origin.z()) + std::abs(p.forward.z()) * sole.length_m * (1 + std::abs(p.u_origin)) + side +
+  const double side =
+      std::abs(p.left.z() * sole.width_m) * std::max(std::abs(sole.v_min), std::abs(sole.v_max));
+  return 1 + std::abs(p.origin.z()) +
+         std::abs(p.forward.z()) * sole.length_m * (1 + std::abs(p.u_origin)) + side +
          std::abs(p.up.z()) * rows.h_abs;
 }
 
@@ -126,7 +135,8 @@ double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SoleP
   return lowest;
 }
 
-double foot_lowest_z(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot) {
+double foot_lowest_z(const SoleSurface& sole, const SoleRows& rows,
+                     const std::array<SolePatch, 2>& foot) {
   return std::min(patch_lowest_z(sole, rows, foot[0]), patch_lowest_z(sole, rows, foot[1]));
 }
 
@@ -134,13 +144,15 @@ namespace {
 
 // Whether fl(v - floor) < band for a value v of row i (a foot cell), in
 // the reference's order.
-bool row_below(const SoleSurface& sole, const SolePatch& p, int i, int j0, int j1, double floor, double band) {
+bool row_below(const SoleSurface& sole, const SolePatch& p, int i, int j0, int j1, double floor,
+               double band) {
   const double along = along_z(sole, p, row_u(sole, i));
   for (int j = j0; j <= j1; ++j) {
     const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
     if (!(h < SoleSurface::kOutside)) continue;
     const double v = col_v(sole, j);
-    if (along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h - floor < band) return true;
+    if (along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h - floor < band)
+      return true;
   }
   return false;
 }
@@ -150,27 +162,31 @@ bool row_below(const SoleSurface& sole, const SolePatch& p, int i, int j0, int j
 // passes exactly when some value does). Rows whose bound, less the
 // rounding, already fails are not scanned; the row with the lowest bound is
 // scanned first.
-bool patch_below(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, double floor, double band) {
+bool patch_below(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, double floor,
+                 double band) {
   const double slack = 1e-12 * bound_scale(sole, rows, p);
   if (!std::isfinite(slack + floor + band) || int(rows.first.size()) != sole.nu)
     return patch_lowest_z(sole, p) - floor < band;
   const auto passes = [&](int i) { return !(row_bound(sole, rows, p, i) - slack - floor >= band); };
   const auto scan = [&](int i) {
-    return row_below(sole, p, i, rows.first[std::size_t(i)], rows.last[std::size_t(i)], floor, band);
+    return row_below(sole, p, i, rows.first[std::size_t(i)], rows.last[std::size_t(i)], floor,
+                     band);
   };
   const int seed = lowest_bound_row(sole, rows, p);
   if (seed < 0 || !passes(seed)) return false;
   if (scan(seed)) return true;
   for (int i = 0; i < sole.nu; ++i)
-    if (i != seed && has_cells(rows, i) && patch_row(p, row_u(sole, i)) && passes(i) && scan(i)) return true;
+    if (i != seed && has_cells(rows, i) && patch_row(p, row_u(sole, i)) && passes(i) && scan(i))
+      return true;
   return false;
 }
 
 }  // namespace
 
-bool foot_below(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot, double floor,
-                double band) {
-  return patch_below(sole, rows, foot[0], floor, band) || patch_below(sole, rows, foot[1], floor, band);
+bool foot_below(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot,
+                double floor, double band) {
+  return patch_below(sole, rows, foot[0], floor, band) ||
+         patch_below(sole, rows, foot[1], floor, band);
 }
 
 }  // namespace ptnet::detail

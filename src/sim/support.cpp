@@ -83,7 +83,8 @@ FloorSupport floor_support(const Motion& motion, const Body& body, const MotionP
     // Some surface within the band: a foot, or an end of a segment's capsule.
     bool contact = false;
     for (int s = 0; s < 2; ++s) {
-      f.foot_down[std::size_t(s)] = foot_below(body.sole(), rows, s ? pb.right_foot : pb.left_foot, floor, band_m);
+      const auto& foot = s ? pb.right_foot : pb.left_foot;
+      f.foot_down[std::size_t(s)] = foot_below(body.sole(), rows, foot, floor, band_m);
       const auto ends = foot_ends(p, s);
       f.heel[std::size_t(s)] = ends[0].head<2>(), f.tip[std::size_t(s)] = ends[1].head<2>();
       contact = contact || f.foot_down[std::size_t(s)];
