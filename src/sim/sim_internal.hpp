@@ -59,7 +59,9 @@ struct SoleRows {
   std::vector<int> first, last;  // [nu] the first and last column inside the foot (first > last: none)
   std::vector<double> h_lo, h_hi;  // [nu] the lowest and highest of the row's heights (m)
   std::vector<double> v_first, v_last;  // [nu] the sole coordinate v of the first and last column
+  std::vector<double> u;                // [nu] the sole coordinate u of each row
   double h_abs = 0;                // the largest |height| of the table (m)
+  double h_min = 0, h_max = 0;     // the lowest and highest height of the table (m; 0 when it has none)
 };
 // The same values as above, bit for bit, through `rows` (of `sole`).
 double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SolePatch& patch);

@@ -59,8 +59,10 @@ SoleRows::SoleRows(const SoleSurface& sole)
       h_lo(first.size(), std::numeric_limits<double>::infinity()),
       h_hi(first.size(), -std::numeric_limits<double>::infinity()),
       v_first(first.size(), 0.0),
-      v_last(first.size(), 0.0) {
-  for (int i = 0; i < sole.nu; ++i)
+      v_last(first.size(), 0.0),
+      u(first.size(), 0.0) {
+  for (int i = 0; i < sole.nu; ++i) {
+    u[std::size_t(i)] = row_u(sole, i);
     for (int j = 0; j < sole.nv; ++j) {
       const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
       if (!(h < SoleSurface::kOutside)) continue;
@@ -68,9 +70,11 @@ SoleRows::SoleRows(const SoleSurface& sole)
       h_lo[std::size_t(i)] = std::min(h_lo[std::size_t(i)], double(h));
       h_hi[std::size_t(i)] = std::max(h_hi[std::size_t(i)], double(h));
       h_abs = std::max(h_abs, std::abs(double(h)));
-      v_first[std::size_t(i)] = col_v(sole, first[std::size_t(i)]),
+      h_min = std::min(h_min, double(h)), h_max = std::max(h_max, double(h));
+      v_first[std::size_t(i)] = col_v(sole, first[std::size_t(i)]);
       v_last[std::size_t(i)] = col_v(sole, j);
     }
+  }
 }
 
 namespace {
@@ -84,8 +88,7 @@ bool has_cells(const SoleRows& rows, int i) {
 double row_bound(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, int i) {
   const std::size_t r = std::size_t(i);
   const double side = p.left.z() * p.medial_sign * sole.width_m, up = p.up.z();
-  return along_z(sole, p, row_u(sole, i)) +
-         std::min(side * rows.v_first[r], side * rows.v_last[r]) +
+  return along_z(sole, p, rows.u[r]) + std::min(side * rows.v_first[r], side * rows.v_last[r]) +
          std::min(up * rows.h_lo[r], up * rows.h_hi[r]);
 }
 
@@ -100,12 +103,22 @@ double bound_scale(const SoleSurface& sole, const SoleRows& rows, const SolePatc
          std::abs(p.up.z()) * rows.h_abs;
 }
 
+// A lower bound (m) of every row_bound of patch p: its terms' lowest over
+// the patch's rows (along is linear in u), any column and any height.
+double patch_bound(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p) {
+  const double u0 = std::max(0.0, p.u_begin), u1 = std::min(1.0, p.u_end);
+  const double side = p.left.z() * p.medial_sign * sole.width_m, up = p.up.z();
+  return std::min(along_z(sole, p, u0), along_z(sole, p, u1)) +
+         std::min(side * sole.v_min, side * sole.v_max) +
+         std::min(up * rows.h_min, up * rows.h_max);
+}
+
 // The row of patch p with foot cells and the lowest bound (-1: none).
 int lowest_bound_row(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p) {
   int seed = -1;
   double lowest = 0;
   for (int i = 0; i < sole.nu; ++i)
-    if (has_cells(rows, i) && patch_row(p, row_u(sole, i))) {
+    if (has_cells(rows, i) && patch_row(p, rows.u[std::size_t(i)])) {
       const double b = row_bound(sole, rows, p, i);
       if (seed < 0 || b < lowest) seed = i, lowest = b;
     }
@@ -129,7 +142,7 @@ double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SoleP
   scan_row(sole, p, seed, rows.first[std::size_t(seed)], rows.last[std::size_t(seed)], cut);
   double lowest = 1e300;
   for (int i = 0; i < sole.nu; ++i)
-    if (has_cells(rows, i) && patch_row(p, row_u(sole, i)) &&
+    if (has_cells(rows, i) && patch_row(p, rows.u[std::size_t(i)]) &&
         !(row_bound(sole, rows, p, i) - slack > std::min(cut, lowest)))
       scan_row(sole, p, i, rows.first[std::size_t(i)], rows.last[std::size_t(i)], lowest);
   return lowest;
@@ -160,8 +173,8 @@ bool row_below(const SoleSurface& sole, const SolePatch& p, int i, int j0, int j
 // Whether patch_lowest_z(sole, p) - floor < band: whether some cell's value
 // v has fl(v - floor) < band (subtracting is monotone: the lowest value
 // passes exactly when some value does). Rows whose bound, less the
-// rounding, already fails are not scanned; the row with the lowest bound is
-// scanned first.
+// rounding, already fails are not scanned, nor any row when the patch's
+// bound fails; the first cell that passes ends the scan.
 bool patch_below(const SoleSurface& sole, const SoleRows& rows, const SolePatch& p, double floor,
                  double band) {
   const double slack = 1e-12 * bound_scale(sole, rows, p);
@@ -172,11 +185,9 @@ bool patch_below(const SoleSurface& sole, const SoleRows& rows, const SolePatch&
     return row_below(sole, p, i, rows.first[std::size_t(i)], rows.last[std::size_t(i)], floor,
                      band);
   };
-  const int seed = lowest_bound_row(sole, rows, p);
-  if (seed < 0 || !passes(seed)) return false;
-  if (scan(seed)) return true;
+  if (!(patch_bound(sole, rows, p) - slack - floor < band)) return false;  // no row can pass
   for (int i = 0; i < sole.nu; ++i)
-    if (i != seed && has_cells(rows, i) && patch_row(p, row_u(sole, i)) && passes(i) && scan(i))
+    if (has_cells(rows, i) && patch_row(p, rows.u[std::size_t(i)]) && passes(i) && scan(i))
       return true;
   return false;
 }
