@@ -1,17 +1,19 @@
 // Core's shared helpers that several stages once kept their own copies of:
 // FNV-1a 64 (digests and name-derived seeds), the binary R^2 from counts and
 // a frame's load (force, centre of pressure, contact area), the line reader
-// of every text format.
+// of every text format, the range check of pressure readings.
 // The values are pinned: they decide simulated sensor noise, recorded
 // digests and the validation split, so a change would change outputs.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/hash.hpp"
+#include "ptnet/error.hpp"
 #include "ptnet/pressure.hpp"
 #include "ptnet/sim.hpp"
 #include "ptnet/strings.hpp"
@@ -80,6 +82,29 @@ TEST(CoreFrameLoad, ForceCentreAndAreaOfKnownFrames) {
   EXPECT_NEAR(l.y_m, (100 * 0.27 + 300 * -0.27) / 400, 1e-12);
   EXPECT_NEAR(l.contact_m2, 2 * 0.0004, 1e-15);
   EXPECT_NEAR(frame_load(f.data(), mat, 150).contact_m2, 0.0004, 1e-15);  // only the 300 kPa cell
+}
+
+TEST(CorePressureCheck, EveryValueOutOfRangeIsFoundWherever) {
+  // Four at a time and the tail one by one: a bad value at every position
+  // of arrays of 1-13 values is refused, naming its frame; good ones pass.
+  const float bad[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                       -std::numeric_limits<float>::infinity(), -0.5f, 2e6f};
+  for (std::size_t n = 1; n <= 13; ++n) {
+    std::vector<float> v(n, 3.5f);
+    v[0] = -0.0f, v[n - 1] = float(kPressureRangeKpa.hi);
+    EXPECT_NO_THROW(check_pressure(v.data(), n, 2, "f", "x")) << n;
+    for (std::size_t k = 0; k < n; ++k)
+      for (float b : bad) {
+        std::vector<float> w = v;
+        w[k] = b;
+        try {
+          check_pressure(w.data(), n, 2, "f", "x");
+          ADD_FAILURE() << b << " at " << k << " of " << n << " passed";
+        } catch (const Error& e) {
+          EXPECT_NE(e.message().find("frame " + std::to_string(k / 2)), std::string::npos) << e.message();
+        }
+      }
+  }
 }
 
 }  // namespace

@@ -132,7 +132,7 @@ struct SimulateDatasetOptions {
   double fps = kFps;              // motions are resampled to this rate
   std::uint64_t seed = 0;         // run seed: sequence_seed(seed, name) per sequence
   int threads = 0;                // 0: hardware concurrency
-  int chunk_jobs = 0;             // jobs per chunk; 0: 8 x threads (at least 16)
+  int chunk_jobs = 0;             // jobs per chunk; 0: 4 on one thread, else 8 x threads (at least 16)
   bool force = false;             // overwrite an existing output
   bool noise_floor = true;        // /floor/<name> for sequences on original bodies
   int compression = kDefaultCompression;  // deflate level 0-9 of the sequences (DatasetInfo::compression)

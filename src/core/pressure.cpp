@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 #include "ptnet/error.hpp"
 #include "ptnet/pressure.hpp"
@@ -65,7 +68,18 @@ void check_pressure(const float* kpa, std::size_t n, int cells, const std::strin
   // One vectorised pass: NaN fails both comparisons, infinities the range;
   // the offender is looked for only when there is one.
   unsigned bad = 0;
-  for (std::size_t i = 0; i < n; ++i) bad |= unsigned(!(kpa[i] >= lo)) | unsigned(!(kpa[i] <= hi));
+  std::size_t k = 0;
+#if defined(__SSE2__)
+  // Four at a time (the compiler does not vectorise the unordered tests).
+  const __m128 vlo = _mm_set1_ps(lo), vhi = _mm_set1_ps(hi);
+  __m128 out = _mm_setzero_ps();
+  for (; k + 4 <= n; k += 4) {
+    const __m128 v = _mm_loadu_ps(kpa + k);
+    out = _mm_or_ps(out, _mm_or_ps(_mm_cmpnge_ps(v, vlo), _mm_cmpnle_ps(v, vhi)));
+  }
+  bad = unsigned(_mm_movemask_ps(out));
+#endif
+  for (; k < n; ++k) bad |= unsigned(!(kpa[k] >= lo)) | unsigned(!(kpa[k] <= hi));
   if (!bad) return;
   check_finite(kpa, n, cells, file, what, first_frame);
   const std::size_t i = std::size_t(std::find_if(kpa, kpa + n, [&](float v) { return v < lo || v > hi; }) - kpa);

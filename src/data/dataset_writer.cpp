@@ -81,13 +81,19 @@ void check_frames(const std::string& path, const std::string& where, const Datas
   const int frames = seq.frames();
   if (frames <= 0 || seq.kpa.size() != size_t(frames) * mat.cells())
     throw Error::in(path, where + ": has no frames");
-  const size_t i = first_non_finite(seq.kpa.data(), seq.kpa.size());
-  if (i < seq.kpa.size()) {
-    size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
-    throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
-                              std::to_string(r) + " col " + std::to_string(c));
+  // One pass over the values when they are all in range (NaN and the
+  // infinities are not); a non-finite value is then looked for, to say where.
+  try {
+    check_pressure(seq.kpa.data(), seq.kpa.size(), mat.cells(), path, where);
+  } catch (const Error&) {
+    const size_t i = first_non_finite(seq.kpa.data(), seq.kpa.size());
+    if (i < seq.kpa.size()) {
+      size_t t = i / mat.cells(), r = (i % mat.cells()) / mat.cols, c = i % mat.cols;
+      throw Error::in(path, where + ": non-finite value at frame " + std::to_string(t) + " row " +
+                                std::to_string(r) + " col " + std::to_string(c));
+    }
+    throw;
   }
-  check_pressure(seq.kpa.data(), seq.kpa.size(), mat.cells(), path, where);
 }
 
 // float32 [T, rows, cols] in chunks of kChunkFrames frames, deflated by

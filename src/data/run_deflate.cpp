@@ -42,10 +42,15 @@ const std::array<LenCode, kMaxMatch + 1>& len_codes() {
   return table;
 }
 
-// Zero bytes at p[0, m), counted 16 (SSE2) or 8 at a time.
+// Zero bytes at p[0, m), counted 64 then 16 (SSE2) or 8 at a time.
 inline std::size_t zero_run(const unsigned char* p, std::size_t m) {
   std::size_t k = 0;
 #if defined(__SSE2__)
+  const auto at = [&](std::size_t o) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + o)); };
+  for (; k + 64 <= m; k += 64) {  // whole 64-byte blocks of zeros (the long runs between pressed cells)
+    const __m128i v = _mm_or_si128(_mm_or_si128(at(k), at(k + 16)), _mm_or_si128(at(k + 32), at(k + 48)));
+    if (_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128())) != 0xffff) break;
+  }
   for (; k + 16 <= m; k += 16) {
     const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + k));
     const unsigned nonzero = ~unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128()))) & 0xffffu;
@@ -163,7 +168,7 @@ std::vector<ClSym> code_length_symbols(const std::uint8_t* len, int n) {
 class BitWriter {
  public:
   explicit BitWriter(unsigned char* out) : out_(out) {}
-  void put(std::uint32_t value, int bits) {  // bits <= 32 - pending
+  void put(std::uint32_t value, int bits) {  // bits <= 32
     acc_ |= std::uint64_t(value) << n_;
     n_ += bits;
     if (n_ >= 32) {
@@ -246,18 +251,18 @@ std::size_t RunDeflater::compress(const unsigned char* in, std::size_t n, unsign
     w.put(cl_code[c.sym], cl_len[c.sym]);
     if (c.bits) w.put(c.extra, c.bits);
   }
-  const std::uint32_t dist1 = 0;  // distance code 0 (distance 1), one bit
-  for (std::size_t k = 0; k < t; ++k) {
-    const std::uint16_t tok = tokens_[k];
-    if (tok < 256) {
-      w.put(code[tok], len[tok]);
-    } else {
-      const LenCode& lc = lens[tok - 256];
-      w.put(code[lc.symbol], len[lc.symbol]);
-      if (lc.bits) w.put(lc.extra, lc.bits);
-      w.put(dist1, 1);
-    }
+  // Each token in one put: a literal's code, or a length's code, its extra
+  // bits and the distance code 0 (distance 1, one bit), at most 21 bits.
+  std::uint32_t tok_bits[256 + kMaxMatch + 1] = {};
+  std::uint8_t tok_len[256 + kMaxMatch + 1] = {};
+  for (int b = 0; b < 256; ++b) tok_bits[b] = code[b], tok_len[b] = len[b];
+  for (int n_len = kMinMatch; n_len <= kMaxMatch; ++n_len) {
+    const LenCode& lc = lens[std::size_t(n_len)];
+    const int cl_bits = len[lc.symbol];
+    tok_bits[256 + n_len] = code[lc.symbol] | (std::uint32_t(lc.extra) << cl_bits);  // then dist 0
+    tok_len[256 + n_len] = std::uint8_t(cl_bits + lc.bits + 1);
   }
+  for (std::size_t k = 0; k < t; ++k) w.put(tok_bits[tokens_[k]], tok_len[tokens_[k]]);
   w.put(code[kEob], len[kEob]);
   unsigned char* end = w.finish();
   const std::uint32_t adler = libdeflate_adler32(1, in, n);

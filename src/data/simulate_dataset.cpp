@@ -187,6 +187,14 @@ void load_clips(const std::vector<ClipSource>& clips, const SimulateDatasetOptio
       if (options.progress) options.progress(progress_line("simulate", "warning: " + w));
 }
 
+// SimulateDatasetOptions::chunk_jobs, 0 resolved: on one thread a few jobs
+// (nothing to balance; the writer reads sequences still in the cache, and
+// less memory is faulted in), on more 8 per thread to balance their load.
+int jobs_per_chunk(const SimulateDatasetOptions& options, int threads) {
+  if (options.chunk_jobs > 0) return options.chunk_jobs;
+  return threads == 1 ? 4 : std::max(16, 8 * threads);
+}
+
 // Sizes before allocating: sequence count, then the memory of the metadata
 // and of two chunks of simulated sequences (one written while the next is
 // simulated), plus one per thread at work.
@@ -200,8 +208,7 @@ void check_sizes(const std::vector<Motion>& motions, std::size_t bodies, const s
                                   std::to_string(kMaxSequences) + " a dataset may have");
   std::uint64_t longest = 0;
   for (const Motion& m : motions) longest = std::max<std::uint64_t>(longest, std::uint64_t(m.size()));
-  const std::uint64_t chunk_jobs =
-      std::min<std::uint64_t>(jobs, options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads));
+  const std::uint64_t chunk_jobs = std::min<std::uint64_t>(jobs, std::uint64_t(jobs_per_chunk(options, threads)));
   const std::uint64_t sequence_bytes = checked_mul(
       longest, checked_mul(std::uint64_t(options.sim.mat.rows) * std::uint64_t(options.sim.mat.cols), sizeof(float),
                            out_path, "mat cells"),
@@ -260,7 +267,7 @@ void simulate_chunks(const std::vector<Motion>& motions, const std::vector<Motio
                      int begin, int end, DatasetWriter& writer, SimulateDatasetSummary& summary,
                      std::vector<ForceTable>& forces) {
   const int nb = int(bodies.size()), total = end - begin;
-  const int chunk = options.chunk_jobs > 0 ? options.chunk_jobs : std::max(16, 8 * threads);
+  const int chunk = jobs_per_chunk(options, threads);
   const auto with_floor = [&](int j) { return options.noise_floor && bodies[std::size_t(j % nb)].role == "original"; };
   int done = 0;
   std::future<void> writing;  // the previous chunk's writes

@@ -2,8 +2,8 @@
 // long axis (row 0 = the far end the body walks towards), the body's left
 // towards col 0; decided once per source motion and scaled to its copies.
 // Also what a placement corrects: the floor under a motion, the feet's
-// pitch and their height (foot lifts), and the surfaces' lowest points
-// those and the dynamics check measure; and the frozen-pelvis check.
+// pitch and their height (foot lifts, from the soles' lowest points:
+// sole_lowest.cpp); and the frozen-pelvis check.
 #include <algorithm>
 #include <cmath>
 
@@ -133,26 +133,6 @@ double frozen_pelvis_fraction(const Motion& motion) {
   return double(frozen) / T;
 }
 
-double patch_lowest_z(const SoleSurface& sole, const SolePatch& p) {
-  double lowest = 1e300;
-  for (int i = 0; i < sole.nu; ++i) {
-    const double u = double(i) / (sole.nu - 1);
-    if (u < p.u_begin || u > p.u_end) continue;
-    const double along = p.origin.z() + p.forward.z() * ((u - p.u_origin) * sole.length_m);
-    for (int j = 0; j < sole.nv; ++j) {
-      const float h = sole.height_m[std::size_t(i) * std::size_t(sole.nv) + std::size_t(j)];
-      if (!(h < SoleSurface::kOutside)) continue;
-      const double v = sole.v_min + (sole.v_max - sole.v_min) * j / (sole.nv - 1);
-      lowest = std::min(lowest, along + p.left.z() * (p.medial_sign * v * sole.width_m) + p.up.z() * h);
-    }
-  }
-  return lowest;
-}
-
-double foot_lowest_z(const SoleSurface& sole, const std::array<SolePatch, 2>& foot) {
-  return std::min(patch_lowest_z(sole, foot[0]), patch_lowest_z(sole, foot[1]));
-}
-
 void lift_feet(Pose& pose, const std::array<double, 2>& lift) {
   for (int s = 0; s < 2; ++s)
     if (lift[std::size_t(s)] != 0)
@@ -166,10 +146,11 @@ std::array<double, 2> foot_lifts(const Motion& motion, const Body& body, const s
   const int T = motion.size();
   if (T < 10) return {0, 0};
   std::array<std::vector<double>, 2> z;
+  const SoleRows rows(body.sole());
   for (int t = 0; t < T; ++t) {
     const PosedBody pb = pose_body(body, motion.frames[std::size_t(t)]);
     const double f = floor.empty() ? 0.0 : floor[std::size_t(t)];
-    for (int s = 0; s < 2; ++s) z[std::size_t(s)].push_back(foot_lowest_z(body.sole(), s ? pb.right_foot : pb.left_foot) - f);
+    for (int s = 0; s < 2; ++s) z[std::size_t(s)].push_back(foot_lowest_z(body.sole(), rows, s ? pb.right_foot : pb.left_foot) - f);
   }
   std::array<double, 2> lift{0, 0};
   for (int s = 0; s < 2; ++s) {

@@ -48,9 +48,28 @@ const Body& reference_body();
 double frozen_pelvis_fraction(const Motion& motion);
 
 // The lowest point (z, m) of a posed sole patch's surface, and of a posed
-// foot's (the lower of its two patches).
+// foot's (the lower of its two patches): every cell of the sole's table
+// (sole_lowest.cpp).
 double patch_lowest_z(const SoleSurface& sole, const SolePatch& patch);
 double foot_lowest_z(const SoleSurface& sole, const std::array<SolePatch, 2>& foot);
+// Per row of a sole's table [nu]: its foot cells' columns and heights, so
+// that the lowest point is found scanning only the rows that can hold it.
+struct SoleRows {
+  explicit SoleRows(const SoleSurface& sole);
+  std::vector<int> first, last;  // [nu] the first and last column inside the foot (first > last: none)
+  std::vector<double> h_lo, h_hi;  // [nu] the lowest and highest of the row's heights (m)
+  std::vector<double> v_first, v_last;  // [nu] the sole coordinate v of the first and last column
+  std::vector<double> u;                // [nu] the sole coordinate u of each row
+  double h_abs = 0;                // the largest |height| of the table (m)
+  double h_min = 0, h_max = 0;     // the lowest and highest height of the table (m; 0 when it has none)
+};
+// The same values as above, bit for bit, through `rows` (of `sole`).
+double patch_lowest_z(const SoleSurface& sole, const SoleRows& rows, const SolePatch& patch);
+double foot_lowest_z(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot);
+// Whether foot_lowest_z(sole, foot) - floor < band, as that computes it,
+// scanning only the rows that can decide it: a foot on the floor.
+bool foot_below(const SoleSurface& sole, const SoleRows& rows, const std::array<SolePatch, 2>& foot, double floor,
+                double band);
 // Lowers each foot's ankle and toe joints by MotionPlacement::foot_lift [left, right] (m).
 void lift_feet(Pose& pose, const std::array<double, 2>& lift);
 // MotionPlacement::foot_lift of a motion (pitch corrected) on `body` over

@@ -59,6 +59,31 @@ PressureSequence simulate(const Motion& motion, const Body& body, const SimOptio
 
 namespace {
 
+// Readings of T frames that hold none yet: each grows by one zeroed frame
+// at a time (Foundation::distribute writes only the contact) into memory
+// reserved for all T, so that a frame is zeroed in the cache just before
+// it is written, not all at once.
+std::vector<PressureSequence> empty_readings(const MatSpec& mat, int T, double fps, std::size_t n) {
+  std::vector<PressureSequence> reads;
+  for (std::size_t k = 0; k < n; ++k) {
+    reads.emplace_back(mat, 0, fps);
+    reads.back().kpa.reserve(std::size_t(T) * mat.cells());
+  }
+  return reads;
+}
+
+// Frame t's pose in mat coordinates (along the mat, across it, above the
+// floor), its feet lifted.
+Pose mat_pose(const Pose& pose, const MotionPlacement& place, int t, double floor) {
+  Pose local;
+  for (int j = 0; j < kJointCount; ++j) {
+    const Eigen::Vector2d d = pose[j].head<2>() - place.centre[std::size_t(t)];
+    local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor);
+  }
+  detail::lift_feet(local, place.foot_lift);
+  return local;
+}
+
 // simulate() read by the sensor once per seed: the pressure of each frame is
 // simulated once, copied to every reading, and each reading gets the sensor
 // model with its own noise stream (one state per seed, advanced frame by
@@ -75,8 +100,7 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
   const Motion motion = detail::pitch_corrected(input, place.foot_pitch);
   const int T = motion.size();
   const MatSpec& mat = options.mat;
-  std::vector<PressureSequence> reads;  // all zero (Foundation::distribute writes only the contact)
-  for (std::size_t k = 0; k < seeds.size(); ++k) reads.emplace_back(mat, T, motion.fps);
+  std::vector<PressureSequence> reads = empty_readings(mat, T, motion.fps, seeds.size());
   if (trace) trace->assign(std::size_t(T), FrameTrace{});
 
   const detail::FloorSupport support = detail::floor_support(motion, body, place, options.compliance_m);
@@ -90,23 +114,23 @@ std::vector<PressureSequence> simulate_seeds(const Motion& input, const Body& bo
   for (std::uint64_t seed : seeds) rng.push_back(seed ^ 0x5bd1e9955bd1e995ULL);
   const double stiffness = options.stiffness_kpa_per_mm * 1e6;  // kPa/mm -> Pa/m
 
-  Pose local;
   for (int t = 0; t < T; ++t) {
-    const Pose& pose = motion.frames[t];
     const Eigen::Vector2d& c = place.centre[t];
-    for (int j = 0; j < kJointCount; ++j) {
-      const Eigen::Vector2d d = pose[j].head<2>() - c;
-      local[j] = Eigen::Vector3d(place.axis.dot(d), place.left.dot(d), pose[j].z() - floor[std::size_t(t)]);
-    }
-    detail::lift_feet(local, place.foot_lift);
+    for (PressureSequence& r : reads) r.kpa.resize(std::size_t(t + 1) * mat.cells());
     float* frame = reads[0].frame(t);
-    raster.rasterise(body, pose_body(body, local), trace != nullptr);
-    const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
-    const Eigen::Vector2d zmp(place.axis.dot(d), place.left.dot(d));
     const double load = share[std::size_t(t)] * com.load_n[std::size_t(t)];
     FrameTrace* ft = trace ? &(*trace)[std::size_t(t)] : nullptr;
-    const detail::RowSpan pressed =
-        foundation.distribute(raster.depth(), load, stiffness, options.balance_moments ? &zmp : nullptr, frame, ft);
+    // Without a load the frame reads 0 (distribute returns at once): with
+    // no trace to fill, nothing is rasterised.
+    detail::RowSpan pressed;
+    if (ft || load > 0) {
+      const Pose local = mat_pose(motion.frames[t], place, t, floor[std::size_t(t)]);
+      raster.rasterise(body, pose_body(body, local), ft != nullptr);
+      const Eigen::Vector2d d = com.zmp[std::size_t(t)] - c;
+      const Eigen::Vector2d zmp(place.axis.dot(d), place.left.dot(d));
+      pressed = foundation.distribute(raster.depth(), load, stiffness, options.balance_moments ? &zmp : nullptr,
+                                      frame, ft);
+    }
     if (ft && raster.depth().zlo < options.compliance_m) ft->carried_n = com.load_n[std::size_t(t)] - load;
     // The other readings' frames are all zero outside the pressed rows too.
     const std::size_t first = std::size_t(std::max(0, pressed.first)) * std::size_t(mat.cols);

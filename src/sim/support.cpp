@@ -73,32 +73,34 @@ FloorSupport floor_support(const Motion& motion, const Body& body, const MotionP
   FloorSupport out;
   out.contact.assign(std::size_t(T), false);
   out.frames.resize(std::size_t(T));
+  const SoleRows rows(body.sole());
   for (int t = 0; t < T; ++t) {
     Pose p = motion.frames[std::size_t(t)];
     lift_feet(p, place.foot_lift);
     const double floor = place.floor.empty() ? 0.0 : place.floor[std::size_t(t)];
     const PosedBody pb = pose_body(body, p);
     SupportFrame& f = out.frames[std::size_t(t)];
-    double lowest = 1e300;
+    // Some surface within the band: a foot, or an end of a segment's capsule.
+    bool contact = false;
     for (int s = 0; s < 2; ++s) {
-      const double z = foot_lowest_z(body.sole(), s ? pb.right_foot : pb.left_foot) - floor;
-      f.foot_down[std::size_t(s)] = z < band_m;
+      const auto& foot = s ? pb.right_foot : pb.left_foot;
+      f.foot_down[std::size_t(s)] = foot_below(body.sole(), rows, foot, floor, band_m);
       const auto ends = foot_ends(p, s);
       f.heel[std::size_t(s)] = ends[0].head<2>(), f.tip[std::size_t(s)] = ends[1].head<2>();
-      lowest = std::min(lowest, z);
+      contact = contact || f.foot_down[std::size_t(s)];
     }
     for (int s = 0; s < kSegmentCount; ++s) {
       const SegmentShape& seg = body.segments()[std::size_t(s)];
       if (!seg.touches_ground) continue;
       const double za = pb.a[s].z() - seg.radius_a_m - floor, zb = pb.b[s].z() - seg.radius_b_m - floor;
-      lowest = std::min({lowest, za, zb});
       if (za < band_m) f.other.push_back(pb.a[s].head<2>());
       if (zb < band_m) f.other.push_back(pb.b[s].head<2>());
+      contact = contact || za < band_m || zb < band_m;
     }
     const Eigen::Vector3d hips = 0.5 * (p[kLeftHip] + p[kRightHip]);
     f.seat = hips.head<2>();
     f.seat_possible = hips.z() - floor < kSeatHipHeight * body.height_m();
-    out.contact[std::size_t(t)] = lowest < band_m;
+    out.contact[std::size_t(t)] = contact;
   }
   return out;
 }
