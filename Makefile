@@ -30,9 +30,6 @@ build-deps:
 configure:
 	cmake -S . -B $(BUILD) $(if $(wildcard $(BUILD)/CMakeCache.txt),,-G Ninja) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 
-$(BUILD)/CMakeCache.txt: | deps
-	$(MAKE) configure
-
 build: deps
 	@$(MAKE) --no-print-directory configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -52,15 +49,18 @@ check-cpu: build
 
 # scripts/lopo.sh: 7 folds of simulate, train and evaluate (docs/lopo.md);
 # resumable, so the same command continues an interrupted run.
-lopo: deps $(BUILD)/CMakeCache.txt
+lopo: deps
+	@$(MAKE) --no-print-directory configure
 	cmake --build $(BUILD) -j $(JOBS) --target ptnet
 	PTNET=$(BUILD)/ptnet ./scripts/lopo.sh $(LOPO_OUT)
 
-install: deps $(BUILD)/CMakeCache.txt
+install: deps
+	@$(MAKE) --no-print-directory configure
 	cmake --build $(BUILD) -j $(JOBS) --target installables
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
-package: deps $(BUILD)/CMakeCache.txt
+package: deps
+	@$(MAKE) --no-print-directory configure
 	cmake --build $(BUILD) -j $(JOBS) --target installables
 	cd $(BUILD) && cpack
 

@@ -1,10 +1,10 @@
 """A new user's `make demo`, phase by phase: clones this repository (its
 committed HEAD) into a fresh folder and runs there what `make demo` runs,
 one phase at a time, with ccache off (a fresh machine has no cache):
-install-deps (`scripts/install-deps.sh build`: seconds when everything is
-present), configure, build (`ptnet`; the slowest compilations from Ninja's
-log), then `ptnet demo` split at its own messages into simulate (and the
-figure), train, evaluate and report. Prints JSON (seconds per phase, wall
+`make build-deps` (seconds when everything is present), `make configure`,
+the build of `ptnet` (the slowest compilations from Ninja's log), then
+`ptnet demo` split at its own messages into simulate (and the figure),
+train, evaluate and report. Prints JSON (seconds per phase, wall
 and CPU of the build).
 
     /usr/bin/python3 bench/bench_fresh_demo.py [--keep DIR] [--jobs N]
@@ -92,9 +92,9 @@ def main():
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=repo, capture_output=True,
                             text=True).stdout.strip()
     result = {"commit": commit, "cpus": os.cpu_count()}
-    result["deps_s"], _ = timed(["./scripts/install-deps.sh", "build"], repo, env, log)
-    result["configure_s"], _ = timed(["cmake", "-S", ".", "-B", "build", "-G", "Ninja",
-                                      "-DCMAKE_BUILD_TYPE=Release"], repo, env, log)
+    # The Makefile's own steps (make demo = build-deps, configure, the ptnet target, ptnet demo).
+    result["deps_s"], _ = timed(["make", "--no-print-directory", "build-deps"], repo, env, log)
+    result["configure_s"], _ = timed(["make", "--no-print-directory", "configure"], repo, env, log)
     result["build_s"], result["build_cpu_s"] = timed(["cmake", "--build", "build", "-j", str(a.jobs),
                                                       "--target", "ptnet"], repo, env, log)
     result["build"] = slowest_compilations(os.path.join(repo, "build"))
